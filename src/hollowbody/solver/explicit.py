@@ -1,0 +1,261 @@
+"""Central-difference explicit time integration (the run loop).
+
+One cycle, from t^n to t^{n+1} (order as in LS-DYNA / OpenRadioss engines):
+
+1. accelerations a^n = f^n / m (deformable nodes); rigid bodies from their
+   resultant force and moment;
+2. velocities v^{n+1/2} = v^{n-1/2} + dt_avg a^n; constraints (SPC,
+   prescribed motion, rigid-body motion) imposed on them;
+3. positions x^{n+1} = x^n + dt v^{n+1/2} (rigid nodes placed by their body);
+4. forces f^{n+1}: element internal + hourglass + bulk viscosity, contact;
+5. energies, histories, monitors, states; next step dt = TSSFAC * min dt_crit.
+
+Termination: end time (normal), negative volume (error, unless ERODE),
+DTMIN, non-finite numbers (error), Ctrl-C (user interrupt). Every output is
+written and flushed as the run goes, so whatever ends the run, what was
+computed is kept.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from hollowbody.solver.boundary import Constraints
+from hollowbody.solver.monitors import Monitors
+from hollowbody.solver.outputs import RunOutputs
+from hollowbody.solver.progress import Progress
+from hollowbody.solver.setup import Assembly, assemble
+
+NORMAL = "normal termination"
+ERROR = "error termination"
+INTERRUPT = "user interrupt"
+
+
+@dataclass
+class RunOptions:
+    """How to run: output folder, overrides and display.
+
+    end_time: overrides *CONTROL_TERMINATION ENDTIM (ms) when given.
+    erode: overrides *CONTROL_TIMESTEP ERODE when given.
+    vtk: write ParaView states; quiet: no progress bar.
+    """
+
+    out_dir: Path
+    end_time: float | None = None
+    erode: bool | None = None
+    vtk: bool = True
+    quiet: bool = False
+    label: str = "run"
+
+
+@dataclass
+class RunResult:
+    """Summary of a finished run (also written to summary.json)."""
+
+    status: str
+    reason: str
+    end_time_ms: float
+    cycles: int
+    summary: dict = field(default_factory=dict)
+    out_dir: Path | None = None
+
+
+class _Terminate(Exception):
+    def __init__(self, status: str, reason: str, **where: object) -> None:
+        super().__init__(reason)
+        self.status = status
+        self.reason = reason
+        self.where = where
+
+
+def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
+    """Run ``model`` (a :class:`hollowbody.model.model.Model`) to termination."""
+    out = Path(options.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    wall0 = time.perf_counter()
+    asm = assemble(model)
+    end_time = options.end_time if options.end_time is not None else model.controls.end_time
+    erode = bool(options.erode) if options.erode is not None else bool(model.controls.erode)
+    outputs = RunOutputs(out, model, asm, end_time, vtk=options.vtk)
+    outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
+                f"{asm.element_counts()} ; end time {end_time:g} ms; erosion "
+                f"{'on' if erode else 'off'}")
+    loop = _Loop(model, asm, outputs, end_time, erode)
+    status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
+    try:
+        with Progress(end_time, quiet=options.quiet, label=options.label) as progress:
+            loop.progress = progress
+            loop.start()
+            loop.run()
+    except _Terminate as term:
+        status, reason, where = term.status, term.reason, term.where
+    except KeyboardInterrupt:
+        status, reason = INTERRUPT, f"interrupted by the user at t={loop.t:.6g} ms"
+    wall = time.perf_counter() - wall0
+    summary = outputs.finish(loop, status, reason, where, wall)
+    return RunResult(status, reason, loop.t, loop.cycle, summary, out)
+
+
+class _Loop:
+    """The time loop's state (t, cycle, x, v, f) and one method per phase."""
+
+    def __init__(self, model, asm: Assembly, outputs: RunOutputs, end_time: float,
+                 erode: bool) -> None:
+        self.model = model
+        self.asm = asm
+        self.out = outputs
+        self.end_time = end_time
+        self.erode = erode
+        n = model.n_nodes
+        self.t = 0.0
+        self.cycle = 0
+        self.x = model.node_x0.astype(np.float64).copy()
+        self.v = model.node_v0.astype(np.float64).copy()
+        self.f = np.zeros((n, 3))
+        self.m = asm.node_mass
+        self.inv_m = np.where(asm.node_mass > 0.0, 1.0 / np.maximum(asm.node_mass, 1e-300), 0.0)
+        self.constraints = Constraints(model, asm.bodies)
+        self.dt = 0.0
+        self.dt_next = 0.0
+        self.dt_crit_elem = (-1, -1)
+        self.ext_work = 0.0
+        self.e0 = 0.0
+        self.monitors: Monitors | None = None
+        self.progress: Progress | None = None
+        self.n_eroded = 0
+        self.dt_min = np.inf
+
+    # -- set-up ---------------------------------------------------------------
+    def start(self) -> None:
+        for body in self.asm.bodies:
+            self.v[body.nodes] = body.node_velocities(self.x)
+        self.constraints.apply_nodes(self.v, self.x, 0.0, 0.0)
+        self._forces(0.0)
+        if not np.isfinite(self.dt_next) or self.dt_next <= 0.0:
+            raise _Terminate(ERROR, "no deformable element sets a time step "
+                             "(a model of rigid parts only cannot be run)")
+        self.dt0 = self.dt_next
+        self.monitors = Monitors(dt_initial=self.dt0)
+        self.e0 = self.kinetic_energy()
+        self.out.log(f"initial time step {self.dt0:.4e} ms (element {self.dt_crit_elem[0]}, "
+                     f"part {self.dt_crit_elem[1]}); initial kinetic energy {self.e0:.6g} J")
+        self.out.record(self, force=True)
+
+    # -- one cycle ------------------------------------------------------------
+    def run(self) -> None:
+        dtmin = self.model.controls.dtmin
+        while self.t < self.end_time * (1.0 - 1e-12):
+            dt_prev = self.dt
+            dt = min(self.dt_next, self.end_time - self.t) if self.end_time > self.t else 0.0
+            dt_avg = dt if self.cycle == 0 else 0.5 * (dt_prev + dt)
+            if self.cycle == 0:
+                dt_avg = 0.5 * dt
+            self.dt = dt
+            self._advance(dt, dt_avg)
+            self.t += dt
+            self.cycle += 1
+            self._forces(dt)
+            self.dt_min = min(self.dt_min, dt)
+            if dtmin > 0.0 and self.dt_next < dtmin * self.dt0:
+                elem, pid = self.dt_crit_elem
+                raise _Terminate(ERROR, f"time step {self.dt_next:.4e} ms below DTMIN "
+                                 f"({dtmin:g} x initial) set by element {elem} (part {pid}) "
+                                 f"at t={self.t:.6g} ms", element=elem, part=pid)
+            self.out.record(self)
+            if self.progress is not None:
+                self.progress.update(self.t, self.cycle, dt)
+
+    def _advance(self, dt: float, dt_avg: float) -> None:
+        x, v, f = self.x, self.v, self.f
+        v_free = v + dt_avg * f * self.inv_m[:, None]
+        v[:] = v_free
+        for body in self.asm.bodies:
+            vel0, om0 = body.vel.copy(), body.omega.copy()
+            body.advance_velocity(dt_avg)
+            free_v, free_w = body.vel.copy(), body.omega.copy()
+            self.constraints.apply_rigid(self.t, dt)
+            # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
+            self.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
+            self.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
+            del vel0, om0
+        self.constraints.apply_nodes(v, x, self.t, dt)
+        pn = self.constraints.prescribed_nodes
+        if pn.size:
+            dv = v[pn] - v_free[pn]
+            self.ext_work += float((self.m[pn, None] * dv * v[pn]).sum())
+        x_old_rigid = [x[b.nodes].copy() for b in self.asm.bodies]
+        x += dt * v
+        for body, xr in zip(self.asm.bodies, x_old_rigid):
+            body.advance_position(dt, x)
+            if dt > 0.0:
+                v[body.nodes] = (x[body.nodes] - xr) / dt
+
+    def _forces(self, dt: float) -> None:
+        f = self.f
+        f[:] = 0.0
+        dt_crit, elem, pid = np.inf, -1, -1
+        for rt in self.asm.elements:
+            d, i, neg = rt.add_forces(self.x, self.v, dt, f)
+            if neg >= 0:
+                if not self.erode:
+                    eid = int(rt.elem_ids[neg])
+                    raise _Terminate(ERROR, f"negative volume in solid element {eid} "
+                                     f"(part {rt.pid}) at t={self.t:.6g} ms",
+                                     element=eid, part=rt.pid)
+                d, i = self._erode(rt, dt)
+            if d < dt_crit and i >= 0:
+                dt_crit, elem, pid = d, int(rt.elem_ids[i]), rt.pid
+        for c in self.asm.contacts:
+            c.add_forces(self.x, self.v, dt, self.cycle, f)
+        for body in self.asm.bodies:
+            body.gather(self.x, f)
+        self.dt_next = self.asm.tssfac * dt_crit
+        self.dt_crit_elem = (elem, pid)
+        if not np.all(np.isfinite(f)):
+            bad = int(np.nonzero(~np.isfinite(f).all(axis=1))[0][0])
+            raise _Terminate(ERROR, f"non-finite force at node {int(self.model.node_ids[bad])} "
+                             f"at t={self.t:.6g} ms", node=int(self.model.node_ids[bad]))
+
+    def _erode(self, rt, dt: float) -> tuple[float, int]:
+        """Delete every element of ``rt`` whose volume is <= 0, then redo its forces."""
+        bad = np.nonzero((rt.volume <= 0.0) & rt.alive)[0]
+        for i in bad:
+            self.out.log(f"erosion: solid element {int(rt.elem_ids[i])} (part {rt.pid}) "
+                         f"deleted at t={self.t:.6g} ms (negative volume)")
+        self.n_eroded += int(bad.size)
+        rt.erode(bad)
+        self.f[:] = 0.0  # redo every element pass of this cycle without the deleted ones
+        d_best, i_best = np.inf, -1
+        for other in self.asm.elements:
+            d, i, neg = other.add_forces(self.x, self.v, 0.0, self.f)
+            if other is rt:
+                d_best, i_best = d, i
+            if neg >= 0 and other is not rt:
+                other.erode(np.array([neg]))
+        return d_best, i_best
+
+    # -- energies ---------------------------------------------------------------
+    def node_velocity_full_step(self) -> np.ndarray:
+        """v^{n+1} estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes)."""
+        return self.v + 0.5 * self.dt_next * self.f * self.inv_m[:, None]
+
+    def kinetic_energy(self) -> float:
+        v = self.node_velocity_full_step()
+        ke = 0.5 * float((self.m[self.asm.deformable] *
+                          (v[self.asm.deformable] ** 2).sum(axis=1)).sum())
+        return ke + sum(b.kinetic_energy() for b in self.asm.bodies)
+
+    def energies(self) -> dict[str, float]:
+        ke = self.kinetic_energy()
+        ie = sum(rt.internal_energy for rt in self.asm.elements)
+        hg = sum(rt.hourglass_energy for rt in self.asm.elements)
+        ce = sum(c.energy for c in self.asm.contacts)
+        total = ke + ie + hg + ce
+        ref = self.e0 + self.ext_work
+        ratio = total / ref if abs(ref) > 1e-30 else 1.0
+        return {"kinetic": ke, "internal": ie, "hourglass": hg, "contact": ce,
+                "external_work": self.ext_work, "total": total, "energy_ratio": ratio}

@@ -1,0 +1,237 @@
+"""Everything a run writes into its output folder.
+
+- ``glstat.csv``  global energies and time step;
+- ``rcforc.csv``  contact resultant forces per contact and side;
+- ``nodout.csv``  displacement/velocity of *DATABASE_HISTORY_NODE nodes;
+- ``rbdout.csv``  rigid-body displacement, velocity and resultant force;
+- ``spcforc.csv`` total SPC reaction force;
+- ``matsum.csv``  kinetic, internal and hourglass energy per part;
+- ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
+- ``messages.log`` the run log; ``summary.json`` how the run ended.
+
+Histories are written at the deck's *DATABASE_<name> intervals, or at
+``end_time / 500`` when the deck requests none; states at the
+*DATABASE_BINARY_D3PLOT interval, or ``end_time / 20``. Every file is flushed
+as it goes.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from hollowbody.io.results.history import HistoryWriter
+from hollowbody.io.results.vtk import VtkSeries, von_mises
+
+DEFAULT_HISTORY_COUNT = 500
+DEFAULT_STATE_COUNT = 20
+
+
+class _Clock:
+    """Fires when simulated time passes the next multiple of ``interval``."""
+
+    def __init__(self, interval: float) -> None:
+        self.interval = interval
+        self.next = 0.0
+
+    def due(self, t: float) -> bool:
+        if self.interval <= 0.0 or t < self.next * (1.0 - 1e-9):
+            return False
+        self.next = (np.floor(t / self.interval + 1e-9) + 1.0) * self.interval
+        return True
+
+
+class RunOutputs:
+    """Writers of one run (see the module docstring)."""
+
+    def __init__(self, out: Path, model, asm, end_time: float, vtk: bool = True) -> None:
+        self.out = Path(out)
+        self.model = model
+        self.asm = asm
+        self.end_time = end_time
+        self.logger = _make_logger(self.out / "messages.log")
+        req = model.output.intervals
+        default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
+        self.clocks = {name: _Clock(req.get(name) or default)
+                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout")}
+        self.state_clock = _Clock(model.output.d3plot_dt or
+                                  (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
+        self.vtk = VtkSeries(self.out, "states") if vtk else None
+        self.glstat = HistoryWriter(self.out / "glstat.csv", [
+            "time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]", "hourglass [J]",
+            "contact [J]", "external_work [J]", "total [J]", "energy_ratio"])
+        self.rcforc = HistoryWriter(self.out / "rcforc.csv", [
+            "time [ms]", "contact", "slave_fx [kN]", "slave_fy [kN]", "slave_fz [kN]",
+            "master_fx [kN]", "master_fy [kN]", "master_fz [kN]"])
+        self.nodout = HistoryWriter(self.out / "nodout.csv", [
+            "time [ms]", "node", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
+            "vz [mm/ms]"])
+        self.rbdout = HistoryWriter(self.out / "rbdout.csv", [
+            "time [ms]", "part", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
+            "vz [mm/ms]", "fx [kN]", "fy [kN]", "fz [kN]"])
+        self.spcforc = HistoryWriter(self.out / "spcforc.csv", [
+            "time [ms]", "fx [kN]", "fy [kN]", "fz [kN]"])
+        self.matsum = HistoryWriter(self.out / "matsum.csv", [
+            "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"])
+        self.last_energies: dict[str, float] = {}
+
+    # -- logging ---------------------------------------------------------------
+    def log(self, message: str, level: int = logging.INFO) -> None:
+        self.logger.log(level, message)
+
+    # -- per cycle ----------------------------------------------------------------
+    def record(self, loop, force: bool = False) -> None:
+        t = loop.t
+        if self.clocks["glstat"].due(t) or force:
+            e = loop.energies()
+            self.last_energies = e
+            self.glstat.write([t, loop.cycle, loop.dt_next, e["kinetic"], e["internal"],
+                               e["hourglass"], e["contact"], e["external_work"], e["total"],
+                               e["energy_ratio"]])
+            if loop.monitors is not None and loop.cycle > 0:
+                part_e, part_hg = self._part_energies(loop)
+                elem, pid = loop.dt_crit_elem
+                for w in loop.monitors.check(t, e["energy_ratio"], e["internal"],
+                                             e["hourglass"], part_e, part_hg, loop.dt_next,
+                                             elem, pid):
+                    self.log("WARNING: " + w["message"], logging.WARNING)
+        if self.clocks["rcforc"].due(t) or force:
+            for c in self.asm.contacts:
+                self.rcforc.write([t, c.cid, *c.slave_force, *c.master_force])
+        if self.clocks["nodout"].due(t) or force:
+            hist = self.model.output.history_nodes
+            if hist.size:
+                u = loop.x[hist] - self.model.node_x0[hist]
+                for k, i in enumerate(hist):
+                    self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *loop.v[i]])
+        if self.clocks["rbdout"].due(t) or force:
+            for b in self.asm.bodies:
+                self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
+        if self.clocks["spcforc"].due(t) or force:
+            self.spcforc.write([t, *loop.constraints.reactions(loop.f)])
+        if self.clocks["matsum"].due(t) or force:
+            self._write_matsum(loop)
+        if self.vtk is not None and (self.state_clock.due(t) or force):
+            self.write_state(loop)
+
+    def _part_energies(self, loop) -> tuple[dict[int, float], dict[int, tuple[float, int]]]:
+        v = loop.node_velocity_full_step()
+        energy: dict[int, float] = {}
+        hg: dict[int, tuple[float, int]] = {}
+        for pid, share in self.asm.part_share.items():
+            energy[pid] = 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
+        for rt in self.asm.elements:
+            energy[rt.pid] = energy.get(rt.pid, 0.0) + rt.internal_energy + rt.hourglass_energy
+            eid = -1
+            per_elem = getattr(rt, "elem_hourglass_energy", None)
+            if per_elem is not None and per_elem.size:
+                eid = int(rt.elem_ids[int(np.argmax(per_elem))])
+            hg[rt.pid] = (rt.hourglass_energy, eid)
+        return energy, hg
+
+    def _write_matsum(self, loop) -> None:
+        v = loop.node_velocity_full_step()
+        by_pid = {rt.pid: rt for rt in self.asm.elements}
+        bodies = {b.pid: b for b in self.asm.bodies}
+        for pid in sorted(self.asm.part_share):
+            share = self.asm.part_share[pid]
+            if pid in bodies:
+                ke = bodies[pid].kinetic_energy()
+            else:
+                ke = 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
+            rt = by_pid.get(pid)
+            ie = rt.internal_energy if rt is not None else 0.0
+            hg = rt.hourglass_energy if rt is not None else 0.0
+            self.matsum.write([loop.t, pid, ke, ie, hg])
+
+    def write_state(self, loop) -> None:
+        cells, data = [], {"part": [], "element": [], "alive": [], "stress [GPa]": [],
+                           "von_mises [GPa]": []}
+        runtimes = {rt.pid: rt for rt in self.asm.elements}
+        for g in self.model.solid_groups:
+            self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
+        for g in self.model.shell_groups:
+            self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
+        if not cells:
+            return
+        u = loop.x - self.model.node_x0
+        self.vtk.write(loop.t, loop.x, {"displacement [mm]": u, "velocity [mm/ms]": loop.v},
+                       cells, data)
+
+    @staticmethod
+    def _add_block(cells, data, kind, group, rt) -> None:
+        e = group.conn.shape[0]
+        cells.append((kind, group.conn))
+        data["part"].append(np.full(e, group.pid, dtype=np.int32))
+        data["element"].append(group.elem_ids.astype(np.int64))
+        stress = getattr(rt, "stress", None)
+        if stress is None or stress.shape != (e, 6):
+            stress = np.zeros((e, 6))
+        alive = getattr(rt, "alive", None)
+        data["alive"].append((np.ones(e) if alive is None else alive).astype(np.int8))
+        data["stress [GPa]"].append(np.asarray(stress, dtype=np.float64))
+        data["von_mises [GPa]"].append(von_mises(stress))
+
+    # -- end -------------------------------------------------------------------
+    def finish(self, loop, status: str, reason: str, where: dict, wall: float) -> dict:
+        try:
+            if loop.cycle > 0 or loop.monitors is not None:
+                self.record(loop, force=True)
+        except Exception as exc:  # never lose the summary because a last write failed
+            self.log(f"could not write the final state: {exc}", logging.ERROR)
+        energies = self.last_energies
+        summary = {
+            "status": status,
+            "reason": reason,
+            **{f"error_{k}": v for k, v in where.items()},
+            "end_time_ms": loop.t,
+            "requested_end_time_ms": self.end_time,
+            "cycles": loop.cycle,
+            "dt_initial_ms": getattr(loop, "dt0", None),
+            "dt_min_ms": None if not np.isfinite(loop.dt_min) else loop.dt_min,
+            "element_counts": self.asm.element_counts(),
+            "nodes": int(self.model.n_nodes),
+            "eroded_elements": loop.n_eroded,
+            "wall_seconds": wall,
+            "energy_ratio": energies.get("energy_ratio"),
+            "energies_J": energies,
+            "warnings": loop.monitors.warnings if loop.monitors is not None else [],
+        }
+        (self.out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json))
+        level = logging.INFO if status == "normal termination" else logging.ERROR
+        self.log(f"{status}: {reason}; {loop.cycle} cycles, wall {wall:.2f} s", level)
+        for w in (self.glstat, self.rcforc, self.nodout, self.rbdout, self.spcforc,
+                  self.matsum):
+            w.close()
+        for h in list(self.logger.handlers):
+            h.close()
+            self.logger.removeHandler(h)
+        return summary
+
+
+def _json(o: object) -> object:
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    return str(o)
+
+
+def _make_logger(path: Path) -> logging.Logger:
+    logger = logging.getLogger(f"hollowbody.run.{path.resolve()}")
+    logger.setLevel(logging.INFO)
+    logger.propagate = False
+    for h in list(logger.handlers):
+        logger.removeHandler(h)
+    fh = logging.FileHandler(path, mode="w")
+    fh.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(message)s"))
+    logger.addHandler(fh)
+    sh = logging.StreamHandler(sys.stderr)
+    sh.setLevel(logging.WARNING)
+    sh.setFormatter(logging.Formatter("hollowbody: %(levelname)s: %(message)s"))
+    logger.addHandler(sh)
+    return logger

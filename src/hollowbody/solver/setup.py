@@ -1,0 +1,115 @@
+"""Set-up of a run: masses, element runtimes, rigid bodies, contacts.
+
+Turns the static :class:`~hollowbody.model.model.Model` into the runtime
+objects the time loop calls. Every element group gets the runtime of its
+family (solid, shell); groups of rigid parts get none (their nodes follow a
+:class:`~hollowbody.solver.rigid.RigidBody`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from hollowbody.errors import DeckError
+from hollowbody.model.mass import spread_element_mass, hex_volumes, lumped_node_mass, quad_areas
+from hollowbody.model.model import Model
+from hollowbody.solver.rigid import RigidBody, build_rigid_bodies
+
+
+@dataclass
+class PartShare:
+    """A part's nodes and its share of their lumped masses (for per-part KE)."""
+
+    nodes: np.ndarray  # (k,) int64
+    mass: np.ndarray  # (k,) kg
+
+
+@dataclass
+class Assembly:
+    """Runtime objects of a model.
+
+    node_mass: (n,) kg lumped; deformable: (n,) bool nodes not on a rigid body;
+    elements: element-group runtimes (``add_forces`` interface); contacts:
+    contact runtimes; bodies: rigid bodies; part_share: {pid: PartShare}.
+    """
+
+    node_mass: np.ndarray
+    part_mass: dict[int, float]
+    deformable: np.ndarray
+    elements: list = field(default_factory=list)
+    contacts: list = field(default_factory=list)
+    bodies: list[RigidBody] = field(default_factory=list)
+    part_share: dict[int, PartShare] = field(default_factory=dict)
+    tssfac: float = 0.9
+    counts: dict[str, int] = field(default_factory=dict)
+
+    def element_counts(self) -> dict[str, int]:
+        return dict(self.counts)
+
+
+def _solid_kind_counts(conn: np.ndarray) -> dict[str, int]:
+    s = np.sort(conn, axis=1)
+    distinct = 1 + np.count_nonzero(np.diff(s, axis=1), axis=1)
+    return {"hexahedra": int((distinct == 8).sum()), "wedges": int((distinct == 6).sum()),
+            "tetrahedra": int((distinct == 4).sum()),
+            "other_solids": int(((distinct != 8) & (distinct != 6) & (distinct != 4)).sum())}
+
+
+def _part_share(n: int, conn: np.ndarray, elem_mass: np.ndarray) -> PartShare:
+    m = np.zeros(n)
+    spread_element_mass(m, conn, elem_mass)
+    nodes = np.nonzero(m)[0]
+    return PartShare(nodes=nodes, mass=m[nodes])
+
+
+def assemble(model: Model) -> Assembly:
+    """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
+    from hollowbody.contact.penalty import ContactRuntime
+    from hollowbody.elements.solid_group import SolidGroupRuntime
+
+    node_mass, part_mass = lumped_node_mass(model)
+    counts = {"hexahedra": 0, "wedges": 0, "tetrahedra": 0, "other_solids": 0, "shells": 0}
+    asm = Assembly(node_mass=node_mass, part_mass=part_mass,
+                   deformable=np.ones(model.n_nodes, dtype=bool), tssfac=model.controls.tssfac)
+    n = model.n_nodes
+    for g in model.solid_groups:
+        for k, c in _solid_kind_counts(g.conn).items():
+            counts[k] += c
+        mat = model.material_of(g.pid)
+        elem_mass = mat.density * np.abs(hex_volumes(g.conn, model.node_x0))
+        asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
+        if mat.kind == "rigid":
+            continue
+        if mat.kind not in ("elastic", "rubber181"):
+            raise DeckError(f"material {mat.mid} ({mat.keyword or mat.kind}) of part {g.pid} "
+                            "is not available for solid elements", mat.source.file,
+                            mat.source.line, mat.keyword or None)
+        asm.elements.append(SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves,
+                                              model.node_x0))
+    for g in model.shell_groups:
+        counts["shells"] += int(g.conn.shape[0])
+        mat = model.material_of(g.pid)
+        elem_mass = mat.density * quad_areas(g.conn, model.node_x0) * g.thickness.mean(axis=1)
+        asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
+        if mat.kind == "rigid":
+            continue
+        try:
+            from hollowbody.elements.shell_group import ShellGroupRuntime
+        except ImportError:
+            part = model.parts[g.pid]
+            raise DeckError(f"part {g.pid} has deformable shell elements, which this version "
+                            "cannot run yet (rigid shells only)", part.source.file,
+                            part.source.line, "PART") from None
+        asm.elements.append(ShellGroupRuntime(g, mat, model.sections[model.parts[g.pid].secid],
+                                              model.hourglass_of(g.pid), model.curves,
+                                              model.node_x0))
+    asm.counts = counts
+    asm.bodies = build_rigid_bodies(model, node_mass)
+    for b in asm.bodies:
+        asm.deformable[b.nodes] = False
+    rigid_node = ~asm.deformable
+    for cdef in model.contacts:
+        asm.contacts.append(ContactRuntime(cdef, model, node_mass, rigid_node))
+    return asm
