@@ -1,0 +1,38 @@
+"""Top-level Python API: read a deck and run it.
+
+>>> from hollowbody.api import run_deck
+>>> result = run_deck("block.k", "out")          # doctest: +SKIP
+>>> result.status, result.summary["energy_ratio"]  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hollowbody.model.model import Model
+from hollowbody.solver.explicit import RunOptions, RunResult, run
+
+
+def load_model(deck: str | Path, strict: bool = False) -> Model:
+    """Read and validate a keyword deck into a :class:`Model` (DeckError on bad input)."""
+    from hollowbody.io.keyword import read_deck
+    from hollowbody.model.builder import build_model
+
+    return build_model(read_deck(Path(deck), strict=strict))
+
+
+def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
+              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
+              label: str = "run") -> RunResult:
+    """Run a model; outputs go to ``out_dir`` (created)."""
+    return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
+                                 vtk=vtk, quiet=quiet, label=label))
+
+
+def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
+             erode: bool | None = None, vtk: bool = True, quiet: bool = True,
+             strict: bool = False) -> RunResult:
+    """Read ``deck`` and run it; see :func:`run_model`."""
+    model = load_model(deck, strict=strict)
+    return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
+                     label=Path(deck).name)

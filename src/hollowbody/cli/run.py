@@ -1,0 +1,55 @@
+"""``hollowbody run DECK.k --out DIR``: run a keyword deck with the explicit solver.
+
+Exit codes: 0 normal termination, 2 bad input (nothing run), 3 error
+termination (negative volume, DTMIN, non-finite numbers; outputs kept),
+130 user interrupt (outputs kept).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+EXIT_ERROR_TERMINATION = 3
+EXIT_INTERRUPT = 130
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("run", help="run a keyword deck with the explicit solver",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("deck", type=Path, help="LS-DYNA keyword deck (.k, .key, .dyn)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="output folder (default: <deck name>_out next to the deck)")
+    p.add_argument("--end-time", type=float, default=None, help="override ENDTIM (ms)")
+    p.add_argument("--erode", action="store_true", default=None,
+                   help="delete solids that reach negative volume instead of stopping")
+    p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
+    p.add_argument("--strict", action="store_true", help="unknown keywords are errors")
+    p.add_argument("--quiet", action="store_true", help="no progress display")
+    p.set_defaults(func=main)
+
+
+def exit_code(status: str) -> int:
+    """Process exit code of a run's termination status."""
+    if status == "normal termination":
+        return 0
+    if status == "user interrupt":
+        return EXIT_INTERRUPT
+    return EXIT_ERROR_TERMINATION
+
+
+def main(args: argparse.Namespace) -> int:
+    from hollowbody.api import run_deck
+
+    out = args.out or args.deck.with_name(args.deck.stem + "_out")
+    result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
+                      vtk=not args.no_vtk, quiet=args.quiet, strict=args.strict)
+    print(f"{result.status}: {result.reason}")
+    print(f"  {result.cycles} cycles, end time {result.end_time_ms:.6g} ms, wall "
+          f"{result.summary.get('wall_seconds', 0.0):.2f} s, energy ratio "
+          f"{_fmt(result.summary.get('energy_ratio'))}; outputs in {out}")
+    return exit_code(result.status)
+
+
+def _fmt(v: float | None) -> str:
+    return "n/a" if v is None else f"{v:.4f}"
