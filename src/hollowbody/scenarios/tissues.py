@@ -59,7 +59,8 @@ class Tissue:
 
 
 TISSUES = {
-    "muscle": Tissue("skeletal muscle", 1.0, 1.0e-6, STRAIN, MUSCLE_STRESS_MPA * 1e-3, 0.100, 0.004),
+    "muscle": Tissue("skeletal muscle", 1.0, 1.0e-6, STRAIN, MUSCLE_STRESS_MPA * 1e-3, 0.100,
+                     0.004),
     "fat": Tissue("subcutaneous fat", 4.59e-3, 0.92e-6, STRAIN, FAT_STRESS_MPA * 1e-3, 0.050,
                   0.002),
 }

@@ -28,8 +28,11 @@ class Constraints:
     def __init__(self, model: Model, bodies: list[RigidBody]) -> None:
         n = model.n_nodes
         self.fixed = np.zeros((n, 3), dtype=bool)
+        self.fixed_rot = np.zeros((n, 3), dtype=bool)
         for spc in model.spcs:
-            self.fixed[spc.nodes] |= np.asarray(spc.dofs, dtype=bool)[:, :3]
+            dofs = np.asarray(spc.dofs, dtype=bool)
+            self.fixed[spc.nodes] |= dofs[:, :3]
+            self.fixed_rot[spc.nodes] |= dofs[:, 3:6]
         self.any_fixed = bool(self.fixed.any())
         self.fixed_nodes = np.nonzero(self.fixed.any(axis=1))[0]
         self.x0 = model.node_x0

@@ -116,6 +116,11 @@ class _Loop:
         self.x = model.node_x0.astype(np.float64).copy()
         self.v = model.node_v0.astype(np.float64).copy()
         self.f = np.zeros((n, 3))
+        # rotational DOFs (shell nodes): angular velocity, moment, rotational inertia
+        self.w = model.node_w0.astype(np.float64).copy()
+        self.mom = np.zeros((n, 3))
+        self.inv_i = np.where(asm.node_rot_inertia > 0.0,
+                              1.0 / np.maximum(asm.node_rot_inertia, 1e-300), 0.0)
         self.m = asm.node_mass
         self.inv_m = np.where(asm.node_mass > 0.0, 1.0 / np.maximum(asm.node_mass, 1e-300), 0.0)
         self.constraints = Constraints(model, asm.bodies)
@@ -173,6 +178,9 @@ class _Loop:
         x, v, f = self.x, self.v, self.f
         v_free = v + dt_avg * f * self.inv_m[:, None]
         v[:] = v_free
+        if self.asm.has_rotations:
+            self.w += dt_avg * self.mom * self.inv_i[:, None]
+            self.w[self.constraints.fixed_rot] = 0.0
         for body in self.asm.bodies:
             vel0, om0 = body.vel.copy(), body.omega.copy()
             body.advance_velocity(dt_avg)
@@ -193,13 +201,16 @@ class _Loop:
             body.advance_position(dt, x)
             if dt > 0.0:
                 v[body.nodes] = (x[body.nodes] - xr) / dt
+            if self.asm.has_rotations:
+                self.w[body.nodes] = body.omega
 
     def _forces(self, dt: float) -> None:
         f = self.f
         f[:] = 0.0
+        self.mom[:] = 0.0
         dt_crit, elem, pid = np.inf, -1, -1
         for rt in self.asm.elements:
-            d, i, neg = rt.add_forces(self.x, self.v, dt, f)
+            d, i, neg = self._element_forces(rt, dt)
             if neg >= 0:
                 if not self.erode:
                     eid = int(rt.elem_ids[neg])
@@ -212,13 +223,18 @@ class _Loop:
         for c in self.asm.contacts:
             c.add_forces(self.x, self.v, dt, self.cycle, f)
         for body in self.asm.bodies:
-            body.gather(self.x, f)
+            body.gather(self.x, f, self.mom)
         self.dt_next = self.asm.tssfac * dt_crit
         self.dt_crit_elem = (elem, pid)
         if not np.all(np.isfinite(f)):
             bad = int(np.nonzero(~np.isfinite(f).all(axis=1))[0][0])
             raise _Terminate(ERROR, f"non-finite force at node {int(self.model.node_ids[bad])} "
                              f"at t={self.t:.6g} ms", node=int(self.model.node_ids[bad]))
+
+    def _element_forces(self, rt, dt: float) -> tuple[float, int, int]:
+        if getattr(rt, "rotational", False):
+            return rt.add_forces(self.x, self.v, dt, self.f, self.w, self.mom)
+        return rt.add_forces(self.x, self.v, dt, self.f)
 
     def _erode(self, rt, dt: float) -> tuple[float, int]:
         """Delete every element of ``rt`` whose volume is <= 0, then redo its forces."""
@@ -229,9 +245,10 @@ class _Loop:
         self.n_eroded += int(bad.size)
         rt.erode(bad)
         self.f[:] = 0.0  # redo every element pass of this cycle without the deleted ones
+        self.mom[:] = 0.0
         d_best, i_best = np.inf, -1
         for other in self.asm.elements:
-            d, i, neg = other.add_forces(self.x, self.v, 0.0, self.f)
+            d, i, neg = self._element_forces(other, 0.0)
             if other is rt:
                 d_best, i_best = d, i
             if neg >= 0 and other is not rt:
@@ -247,6 +264,10 @@ class _Loop:
         v = self.node_velocity_full_step()
         ke = 0.5 * float((self.m[self.asm.deformable] *
                           (v[self.asm.deformable] ** 2).sum(axis=1)).sum())
+        if self.asm.has_rotations:
+            w = self.w + 0.5 * self.dt_next * self.mom * self.inv_i[:, None]
+            d = self.asm.deformable
+            ke += 0.5 * float((self.asm.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
         return ke + sum(b.kinetic_energy() for b in self.asm.bodies)
 
     def energies(self) -> dict[str, float]:

@@ -23,8 +23,8 @@ class Progress:
 
     def __enter__(self) -> Progress:
         if self.enabled:
-            from rich.progress import (BarColumn, Progress as RichProgress, TextColumn,
-                                       TimeRemainingColumn)
+            from rich.progress import BarColumn, TextColumn, TimeRemainingColumn
+            from rich.progress import Progress as RichProgress
             self._bar = RichProgress(
                 TextColumn("[bold]{task.description}"), BarColumn(),
                 TextColumn("t={task.fields[t]:.4g}/{task.total:.4g} ms"),

@@ -74,11 +74,14 @@ class RigidBody:
         r = x[self.nodes] - self.xc
         return self.vel + np.cross(self.omega, r)
 
-    def gather(self, x: np.ndarray, f: np.ndarray) -> None:
-        """Resultant force and moment (about xc) of f (n, 3) on the body's nodes."""
+    def gather(self, x: np.ndarray, f: np.ndarray, moment: np.ndarray | None = None) -> None:
+        """Resultant force and moment (about xc) of nodal forces f (n, 3) kN and
+        nodal moments (n, 3) kN*mm (optional) on the body's nodes."""
         fn = f[self.nodes]
         self.force = fn.sum(axis=0)
         self.moment = np.cross(x[self.nodes] - self.xc, fn).sum(axis=0)
+        if moment is not None:
+            self.moment = self.moment + moment[self.nodes].sum(axis=0)
 
     def advance_velocity(self, dt: float) -> None:
         """V, w from t^{n-1/2} to t^{n+1/2} with the last gathered force."""

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hollowbody.errors import DeckError
-from hollowbody.model.mass import spread_element_mass, hex_volumes, lumped_node_mass, quad_areas
+from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
 from hollowbody.solver.rigid import RigidBody, build_rigid_bodies
 
@@ -43,6 +43,8 @@ class Assembly:
     bodies: list[RigidBody] = field(default_factory=list)
     part_share: dict[int, PartShare] = field(default_factory=dict)
     tssfac: float = 0.9
+    node_rot_inertia: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    has_rotations: bool = False
     counts: dict[str, int] = field(default_factory=dict)
 
     def element_counts(self) -> dict[str, int]:
@@ -106,6 +108,11 @@ def assemble(model: Model) -> Assembly:
                                               model.hourglass_of(g.pid), model.curves,
                                               model.node_x0))
     asm.counts = counts
+    asm.node_rot_inertia = np.zeros(n)
+    for rt in asm.elements:
+        if getattr(rt, "rotational", False):
+            asm.node_rot_inertia += rt.lumped_rotational_inertia(n)
+            asm.has_rotations = True
     asm.bodies = build_rigid_bodies(model, node_mass)
     for b in asm.bodies:
         asm.deformable[b.nodes] = False

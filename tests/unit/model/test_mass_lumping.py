@@ -3,8 +3,12 @@
 import numpy as np
 import pytest
 
-from hollowbody.model.mass import (hex_volumes, point_mass_properties, quad_areas,
-                                   spread_element_mass)
+from hollowbody.model.mass import (
+    hex_volumes,
+    point_mass_properties,
+    quad_areas,
+    spread_element_mass,
+)
 from hollowbody.scenarios.geometry import block_mesh
 
 UNIT_HEX = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
