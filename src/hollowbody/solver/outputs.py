@@ -98,7 +98,7 @@ class RunOutputs:
                 for w in loop.monitors.check(t, e["energy_ratio"], e["internal"],
                                              e["hourglass"], part_e, part_hg, loop.dt_next,
                                              elem, pid):
-                    self.log("WARNING: " + w["message"], logging.WARNING)
+                    self.log(w["message"], logging.WARNING)
         if self.clocks["rcforc"].due(t) or force:
             for c in self.asm.contacts:
                 self.rcforc.write([t, c.cid, *c.slave_force, *c.master_force])

@@ -68,7 +68,7 @@ def _part_share(n: int, conn: np.ndarray, elem_mass: np.ndarray) -> PartShare:
 
 def assemble(model: Model) -> Assembly:
     """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
-    from hollowbody.contact.penalty import ContactRuntime
+    from hollowbody.contact import ContactRuntime
     from hollowbody.elements.solid_group import SolidGroupRuntime
 
     node_mass, part_mass = lumped_node_mass(model)
