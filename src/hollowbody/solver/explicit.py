@@ -133,6 +133,7 @@ class _Loop:
         self.progress: Progress | None = None
         self.n_eroded = 0
         self.dt_min = np.inf
+        self.dtmin_abs = 0.0
 
     # -- set-up ---------------------------------------------------------------
     def start(self) -> None:
@@ -144,6 +145,7 @@ class _Loop:
             raise _Terminate(ERROR, "no deformable element sets a time step "
                              "(a model of rigid parts only cannot be run)")
         self.dt0 = self.dt_next
+        self.dtmin_abs = self.model.controls.dtmin * self.dt0
         self.monitors = Monitors(dt_initial=self.dt0)
         self.e0 = self.kinetic_energy()
         self.out.log(f"initial time step {self.dt0:.4e} ms (element {self.dt_crit_elem[0]}, "
@@ -165,7 +167,7 @@ class _Loop:
             self.cycle += 1
             self._forces(dt)
             self.dt_min = min(self.dt_min, dt)
-            if dtmin > 0.0 and self.dt_next < dtmin * self.dt0:
+            if dtmin > 0.0 and not self.erode and self.dt_next < dtmin * self.dt0:
                 elem, pid = self.dt_crit_elem
                 raise _Terminate(ERROR, f"time step {self.dt_next:.4e} ms below DTMIN "
                                  f"({dtmin:g} x initial) set by element {elem} (part {pid}) "
@@ -206,20 +208,7 @@ class _Loop:
 
     def _forces(self, dt: float) -> None:
         f = self.f
-        f[:] = 0.0
-        self.mom[:] = 0.0
-        dt_crit, elem, pid = np.inf, -1, -1
-        for rt in self.asm.elements:
-            d, i, neg = self._element_forces(rt, dt)
-            if neg >= 0:
-                if not self.erode:
-                    eid = int(rt.elem_ids[neg])
-                    raise _Terminate(ERROR, f"negative volume in solid element {eid} "
-                                     f"(part {rt.pid}) at t={self.t:.6g} ms",
-                                     element=eid, part=rt.pid)
-                d, i = self._erode(rt, dt)
-            if d < dt_crit and i >= 0:
-                dt_crit, elem, pid = d, int(rt.elem_ids[i]), rt.pid
+        dt_crit, elem, pid = self._element_pass(dt)
         for c in self.asm.contacts:
             c.add_forces(self.x, self.v, dt, self.cycle, f)
         for body in self.asm.bodies:
@@ -231,29 +220,65 @@ class _Loop:
             raise _Terminate(ERROR, f"non-finite force at node {int(self.model.node_ids[bad])} "
                              f"at t={self.t:.6g} ms", node=int(self.model.node_ids[bad]))
 
-    def _element_forces(self, rt, dt: float) -> tuple[float, int, int]:
-        if getattr(rt, "rotational", False):
-            return rt.add_forces(self.x, self.v, dt, self.f, self.w, self.mom)
-        return rt.add_forces(self.x, self.v, dt, self.f)
+    def _element_pass(self, dt: float) -> tuple[float, int, int]:
+        """Element forces of every group into f (and moments); returns the smallest
+        scaled critical step with its element id and part id.
 
-    def _erode(self, rt, dt: float) -> tuple[float, int]:
-        """Delete every element of ``rt`` whose volume is <= 0, then redo its forces."""
-        bad = np.nonzero((rt.volume <= 0.0) & rt.alive)[0]
+        A negative volume ends the run (error termination) unless erosion is on;
+        then the offending elements (and, with DTMIN, those whose step fell below
+        it) are deleted and the pass is redone: groups already updated this cycle
+        are called again with dt = 0 (forces from their updated stresses only).
+        """
+        done: set[int] = set()
+        while True:
+            self.f[:] = 0.0
+            self.mom[:] = 0.0
+            dt_crit, elem, pid = np.inf, -1, -1
+            restart = False
+            for k, rt in enumerate(self.asm.elements):
+                d, i, neg = self._element_forces(rt, 0.0 if k in done else dt)
+                done.add(k)
+                small = self.erode and self.dtmin_abs > 0.0 and \
+                    self.asm.tssfac * d < self.dtmin_abs
+                if neg >= 0 and not self.erode:
+                    eid = int(rt.elem_ids[neg])
+                    raise _Terminate(ERROR, f"negative volume in solid element {eid} "
+                                     f"(part {rt.pid}) at t={self.t:.6g} ms",
+                                     element=eid, part=rt.pid)
+                if (neg >= 0 or small) and self._erode(rt, small):
+                    restart = True
+                    break
+                if d < dt_crit and i >= 0:
+                    dt_crit, elem, pid = d, int(rt.elem_ids[i]), rt.pid
+            if not restart:
+                return dt_crit, elem, pid
+
+    def _element_forces(self, rt, dt: float) -> tuple[float, int, int]:
+        """One group's forces; its critical step scaled by its ``step_factor``."""
+        if getattr(rt, "rotational", False):
+            d, i, neg = rt.add_forces(self.x, self.v, dt, self.f, self.w, self.mom)
+        else:
+            d, i, neg = rt.add_forces(self.x, self.v, dt, self.f)
+        return d * getattr(rt, "step_factor", 1.0), i, neg
+
+    def _erode(self, rt, small_step: bool) -> int:
+        """Delete the elements of ``rt`` whose volume is <= 0 (and, with
+        ``small_step``, those whose step is below DTMIN x initial step, as
+        LS-DYNA's ERODE=1 does). Returns how many were deleted."""
+        bad = (rt.volume <= 0.0) & rt.alive
+        why = "negative volume"
+        if small_step:
+            bad |= (self.asm.tssfac * getattr(rt, "step_factor", 1.0) * rt.dt_elem
+                    < self.dtmin_abs) & rt.alive
+            why = "negative volume or time step below DTMIN"
+        bad = np.nonzero(bad)[0]
         for i in bad:
             self.out.log(f"erosion: solid element {int(rt.elem_ids[i])} (part {rt.pid}) "
-                         f"deleted at t={self.t:.6g} ms (negative volume)")
+                         f"deleted at t={self.t:.6g} ms ({why})")
         self.n_eroded += int(bad.size)
-        rt.erode(bad)
-        self.f[:] = 0.0  # redo every element pass of this cycle without the deleted ones
-        self.mom[:] = 0.0
-        d_best, i_best = np.inf, -1
-        for other in self.asm.elements:
-            d, i, neg = self._element_forces(other, 0.0)
-            if other is rt:
-                d_best, i_best = d, i
-            if neg >= 0 and other is not rt:
-                other.erode(np.array([neg]))
-        return d_best, i_best
+        if bad.size:
+            rt.erode(bad)
+        return int(bad.size)
 
     # -- energies ---------------------------------------------------------------
     def node_velocity_full_step(self) -> np.ndarray:

@@ -1,0 +1,90 @@
+"""Whole runs: energy balance, momentum, and every way a run can end.
+
+Tolerances: the energy ratio of an elastic impact stays within 2% (penalty
+contact and central differences conserve energy to O(dt^2); measured
+deviations are below 1%); rigid-body momentum is exact to round-off.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from solver_decks import cube_and_plate
+
+from hollowbody.api import run_model
+from hollowbody.io.results.history import read_history
+from hollowbody.model.builder import build_model
+
+
+def _run(deck, tmp_path, **kw):
+    return run_model(build_model(deck), tmp_path, vtk=False, **kw)
+
+
+def test_elastic_impact_conserves_energy_and_rebounds(tmp_path):
+    res = _run(cube_and_plate(e=0.1, speed=3.0, end=4.0), tmp_path)
+    assert res.status == "normal termination"
+    g = read_history(tmp_path / "glstat.csv")
+    ratio = g["energy_ratio"]
+    assert np.all(np.abs(ratio - 1.0) < 0.02), ratio.min()
+    rb = read_history(tmp_path / "rbdout.csv")
+    vz = rb["vz [mm/ms]"]
+    assert vz[0] == pytest.approx(-3.0)
+    assert vz.max() > 0.5  # the plate bounced back off the elastic cube
+    assert res.summary["cycles"] > 0
+
+
+def test_free_rigid_body_keeps_momentum(tmp_path):
+    deck = cube_and_plate(speed=2.0, end=0.5, gap=50.0)  # the plate never reaches the cube
+    res = _run(deck, tmp_path)
+    assert res.status == "normal termination"
+    rb = read_history(tmp_path / "rbdout.csv")
+    assert np.allclose(rb["vz [mm/ms]"], -2.0, rtol=0, atol=1e-12)
+    assert rb["uz [mm]"][-1] == pytest.approx(-2.0 * 0.5, rel=1e-9)
+
+
+def test_negative_volume_is_an_error_termination_with_outputs_kept(tmp_path):
+    deck = cube_and_plate(speed=0.0, gap=50.0, end=1.0, crush=30.0)
+    res = _run(deck, tmp_path)
+    assert res.status == "error termination"
+    assert "negative volume in solid element" in res.reason and "(part 1)" in res.reason
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["status"] == "error termination"
+    assert s["error_part"] == 1 and s["error_element"] >= 1
+    assert 0.0 < s["end_time_ms"] < 1.0
+    assert len(read_history(tmp_path / "glstat.csv")["time [ms]"]) > 2
+    assert "error termination" in (tmp_path / "messages.log").read_text()
+
+
+def test_erode_deletes_elements_and_goes_on(tmp_path):
+    deck = cube_and_plate(speed=0.0, gap=50.0, end=1.0, crush=30.0, erode=1, dtmin=0.05)
+    res = _run(deck, tmp_path)
+    assert res.summary["eroded_elements"] > 0
+    assert "erosion: solid element" in (tmp_path / "messages.log").read_text()
+
+
+def test_dtmin_ends_the_run(tmp_path):
+    deck = cube_and_plate(speed=0.0, gap=50.0, end=1.0, crush=30.0, dtmin=0.5)
+    res = _run(deck, tmp_path)
+    assert res.status == "error termination"
+    assert "DTMIN" in res.reason
+
+
+def test_user_interrupt_keeps_outputs(tmp_path, monkeypatch):
+    from hollowbody.solver import explicit
+
+    calls = {"n": 0}
+    original = explicit._Loop._advance
+
+    def interrupted(self, dt, dt_avg):
+        calls["n"] += 1
+        if calls["n"] == 20:
+            raise KeyboardInterrupt
+        return original(self, dt, dt_avg)
+
+    monkeypatch.setattr(explicit._Loop, "_advance", interrupted)
+    res = _run(cube_and_plate(end=2.0), tmp_path)
+    assert res.status == "user interrupt"
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["status"] == "user interrupt" and s["cycles"] == 19
