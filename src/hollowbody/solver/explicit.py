@@ -134,6 +134,8 @@ class _Loop:
         self.n_eroded = 0
         self.dt_min = np.inf
         self.dtmin_abs = 0.0
+        #: wall seconds spent in element and contact force passes
+        self.timing = {"elements": 0.0, "contact": 0.0}
 
     # -- set-up ---------------------------------------------------------------
     def start(self) -> None:
@@ -208,9 +210,14 @@ class _Loop:
 
     def _forces(self, dt: float) -> None:
         f = self.f
+        t0 = time.perf_counter()
         dt_crit, elem, pid = self._element_pass(dt)
+        t1 = time.perf_counter()
         for c in self.asm.contacts:
             c.add_forces(self.x, self.v, dt, self.cycle, f)
+        t2 = time.perf_counter()
+        self.timing["elements"] += t1 - t0
+        self.timing["contact"] += t2 - t1
         for body in self.asm.bodies:
             body.gather(self.x, f, self.mom)
         self.dt_next = self.asm.tssfac * dt_crit

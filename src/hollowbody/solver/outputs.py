@@ -197,6 +197,7 @@ class RunOutputs:
             "nodes": int(self.model.n_nodes),
             "eroded_elements": loop.n_eroded,
             "wall_seconds": wall,
+            "timing_seconds": dict(loop.timing),
             "energy_ratio": energies.get("energy_ratio"),
             "energies_J": energies,
             "warnings": loop.monitors.warnings if loop.monitors is not None else [],
