@@ -323,6 +323,11 @@ class Model:
     controls: Controls = field(default_factory=Controls)
     output: OutputRequests = field(default_factory=OutputRequests)
     title: str = ""
+    #: Resolved sets by LS-DYNA set id: node sets (k,) int64 node indices,
+    #: part sets [pid, ...], segment sets (s, 4) int32 node indices.
+    node_sets: dict[int, np.ndarray] = field(default_factory=dict)
+    part_sets: dict[int, list[int]] = field(default_factory=dict)
+    segment_sets: dict[int, np.ndarray] = field(default_factory=dict)
     #: Unsupported keywords seen while reading: (keyword, file, line).
     unsupported: list[tuple[str, str, int]] = field(default_factory=list)
 

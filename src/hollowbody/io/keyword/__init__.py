@@ -1,0 +1,67 @@
+"""LS-DYNA keyword decks: reader, writer and the keyword items.
+
+>>> from hollowbody.io.keyword import read_deck, write_deck
+>>> deck = read_deck("model.k")          # doctest: +SKIP
+>>> write_deck(deck, "copy.k")           # doctest: +SKIP
+
+See ``docs/keyword.md`` for the supported keywords and the deck-building API.
+"""
+
+from hollowbody.io.keyword.base import KeywordItem, RawKeyword, SimpleKeyword, Title
+from hollowbody.io.keyword.deck import Deck, Include
+from hollowbody.io.keyword.kw_contact import CONTACT_TYPES, Contact
+from hollowbody.io.keyword.kw_control import (
+    ControlBulkViscosity,
+    ControlContact,
+    ControlHourglass,
+    ControlTermination,
+    ControlTimestep,
+    DatabaseAscii,
+    DatabaseBinaryD3plot,
+    DatabaseHistoryNode,
+    DatabaseHistoryNodeSet,
+)
+from hollowbody.io.keyword.kw_loads import (
+    BoundarySpcNode,
+    BoundarySpcSet,
+    InitialVelocity,
+    InitialVelocityGeneration,
+    InitialVelocityNode,
+    PrescribedMotionNode,
+    PrescribedMotionRigid,
+    PrescribedMotionSet,
+)
+from hollowbody.io.keyword.kw_materials import (
+    MatElastic,
+    Material,
+    MatPiecewiseLinearPlasticity,
+    MatPlasticKinematic,
+    MatRigid,
+    MatSimplifiedRubber,
+)
+from hollowbody.io.keyword.kw_mesh import MassElements, Nodes, ShellElements, SolidElements
+from hollowbody.io.keyword.kw_parts import Hourglass, Part, PartInertia, SectionShell, SectionSolid
+from hollowbody.io.keyword.kw_sets import (
+    DefineCurve,
+    SetNodeList,
+    SetNodeListGenerate,
+    SetPartList,
+    SetPartListGenerate,
+    SetSegment,
+)
+from hollowbody.io.keyword.reader import UnsupportedKeywordWarning, read_deck, read_deck_text
+from hollowbody.io.keyword.writer import deck_lines, write_deck
+
+__all__ = [
+    "CONTACT_TYPES", "BoundarySpcNode", "BoundarySpcSet", "Contact", "ControlBulkViscosity",
+    "ControlContact", "ControlHourglass", "ControlTermination", "ControlTimestep",
+    "DatabaseAscii", "DatabaseBinaryD3plot", "DatabaseHistoryNode", "DatabaseHistoryNodeSet",
+    "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
+    "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
+    "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
+    "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartInertia", "PrescribedMotionNode",
+    "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionShell",
+    "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
+    "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "Title",
+    "UnsupportedKeywordWarning", "deck_lines", "read_deck", "read_deck_text", "write_deck",
+]
