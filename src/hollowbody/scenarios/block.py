@@ -63,6 +63,15 @@ class BlockConfig:
     erode: bool = False
     hourglass_ihq: int = 4
     hourglass_qh: float = 0.05
+    # hollow structure (structure="hollow"); None -> the paper's fit for the tissue
+    hollow_E: float | None = None  # MPa
+    hollow_yield: float | None = None  # MPa
+    hollow_etan: float = 0.0  # MPa
+    thickness: float = 1.5  # mm
+    cell: float = 30.0  # mm
+    elements_per_edge: int = 4
+    mass_preserving: bool = True
+    self_contact: bool = True
     output_dt: float = 0.02  # ms between history rows
     states: int = 25  # ParaView states over the run
     extra: dict = field(default_factory=dict)

@@ -45,14 +45,14 @@ def test_free_rigid_body_keeps_momentum(tmp_path):
 
 
 def test_negative_volume_is_an_error_termination_with_outputs_kept(tmp_path):
-    deck = cube_and_plate(speed=0.0, gap=50.0, end=1.0, crush=30.0)
+    deck = cube_and_plate(speed=0.0, gap=50.0, end=10.0, crush=30.0)
     res = _run(deck, tmp_path)
     assert res.status == "error termination"
     assert "negative volume in solid element" in res.reason and "(part 1)" in res.reason
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["status"] == "error termination"
     assert s["error_part"] == 1 and s["error_element"] >= 1
-    assert 0.0 < s["end_time_ms"] < 1.0
+    assert 0.0 < s["end_time_ms"] < 10.0
     assert len(read_history(tmp_path / "glstat.csv")["time [ms]"]) > 2
     assert "error termination" in (tmp_path / "messages.log").read_text()
 
