@@ -32,6 +32,20 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="delete solids reaching negative volume instead of stopping")
     p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
     p.add_argument("--quiet", action="store_true", help="no progress display")
+    g = p.add_argument_group("hollow structure (--structure hollow)")
+    g.add_argument("--E", dest="hollow_E", type=float, default=None,
+                   help="wall Young's modulus in MPa (default: paper's fit, muscle 100, fat 50)")
+    g.add_argument("--yield", dest="hollow_yield", type=float, default=None,
+                   help="wall yield stress in MPa (default: paper's fit, muscle 4, fat 2)")
+    g.add_argument("--etan", type=float, default=0.0, help="wall tangent modulus in MPa")
+    g.add_argument("--thickness", type=float, default=1.5, help="wall thickness in mm")
+    g.add_argument("--cell", type=float, default=30.0, help="cell size in mm")
+    g.add_argument("--elements-per-edge", type=int, default=4,
+                   help="shell elements along a cell edge")
+    g.add_argument("--no-mass-preserving", action="store_true",
+                   help="walls keep the tissue density instead of the solid block's mass")
+    p.add_argument("--compare", action="store_true",
+                   help="run solid and hollow at this speed and overlay their curves")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: block_<structure>_<tissue>_<speed>kmh)")
     p.set_defaults(func=main)
@@ -41,18 +55,22 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.cli.run import exit_code
     from hollowbody.scenarios.block import BlockConfig, block_impact
 
-    if args.structure == "hollow":
-        raise UserInputError("--structure hollow needs the shell elements, which this version "
-                             "does not have yet; use --structure solid")
     if args.speed <= 0.0:
         raise UserInputError(f"--speed must be positive (got {args.speed:g} km/h)")
-    out = args.out or Path(f"block_{args.structure}_{args.tissue}_{args.speed:g}kmh")
+    structure = "compare" if args.compare else args.structure
+    out = args.out or Path(f"block_{structure}_{args.tissue}_{args.speed:g}kmh")
     try:
         cfg = BlockConfig(tissue=args.tissue, structure=args.structure, speed_kmh=args.speed,
                           mesh=args.mesh, impactor=args.impactor, edge_radius=args.edge_radius,
-                          end_time=args.end_time, friction=args.friction, erode=args.erode)
+                          end_time=args.end_time, friction=args.friction, erode=args.erode,
+                          hollow_E=args.hollow_E, hollow_yield=args.hollow_yield,
+                          hollow_etan=args.etan, thickness=args.thickness, cell=args.cell,
+                          elements_per_edge=args.elements_per_edge,
+                          mass_preserving=not args.no_mass_preserving)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    if args.compare:
+        return _compare(cfg, out, args)
     res = block_impact(cfg, out, vtk=not args.no_vtk, quiet=args.quiet)
     s = res.summary
     print(f"{s['status']}: {s['reason']}")
@@ -62,3 +80,30 @@ def main(args: argparse.Namespace) -> int:
           f"{s['wall_seconds']:.1f} s")
     print(f"  outputs in {out} (deck.k, force_displacement.csv/.png, summary.json, states.pvd)")
     return exit_code(s["status"])
+
+
+def _compare(cfg, out: Path, args: argparse.Namespace) -> int:
+    """Solid and hollow at the same speed, curves overlaid in ``out/compare.png``."""
+    from dataclasses import replace
+
+    from hollowbody.cli.run import exit_code
+    from hollowbody.report.force_displacement import plot
+    from hollowbody.scenarios.block import block_impact
+
+    results = {}
+    for structure in ("solid", "hollow"):
+        c = replace(cfg, structure=structure)
+        results[structure] = block_impact(c, out / structure, vtk=not args.no_vtk,
+                                          quiet=args.quiet)
+    plot([r.curve for r in results.values()], out / "compare.png",
+         title=f"block test, {cfg.tissue}, {cfg.speed_kmh:g} km/h: solid vs hollow")
+    for name, r in results.items():
+        s = r.summary
+        print(f"{name:6s} {s['status']}: peak {r.curve.peak_force:.3f} kN, max displacement "
+              f"{r.curve.max_displacement:.2f} mm, {s['cycles']} cycles, wall "
+              f"{s['wall_seconds']:.1f} s")
+    ws, wh = (results[k].summary["wall_seconds"] for k in ("solid", "hollow"))
+    if all(r.summary["status"] == "normal termination" for r in results.values()) and wh > 0:
+        print(f"wall-time ratio solid/hollow: {ws / wh:.2f}")
+    print(f"overlay: {out / 'compare.png'}")
+    return max(exit_code(r.summary["status"]) for r in results.values())

@@ -88,6 +88,15 @@ class BlockConfig:
             raise ValueError("mesh size must be positive")
         if not 0.0 <= self.edge_radius < 0.5 * IMPACTOR_DIAMETER:
             raise ValueError("edge radius must be in [0, 45) mm")
+        if self.structure == "hollow":
+            if self.thickness <= 0.0 or self.elements_per_edge < 1:
+                raise ValueError("wall thickness must be positive and elements per edge >= 1")
+            for s in BLOCK_SIZE:
+                k = s / self.cell
+                if abs(k - round(k)) > 1e-9 * k or round(k) < 1:
+                    raise ValueError(f"--cell {self.cell:g} mm does not divide the block "
+                                     f"({BLOCK_SIZE[0]:g} x {BLOCK_SIZE[1]:g} x "
+                                     f"{BLOCK_SIZE[2]:g} mm)")
         for s in BLOCK_SIZE:
             k = s / self.mesh
             if abs(k - round(k)) > 1e-9 * k:
@@ -130,54 +139,42 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
         DatabaseBinaryD3plot,
         DatabaseHistoryNode,
         Deck,
-        DefineCurve,
-        Hourglass,
         InitialVelocityGeneration,
         MatRigid,
-        MatSimplifiedRubber,
         Part,
         SectionShell,
-        SectionSolid,
         SetNodeList,
     )
 
-    if cfg.structure != "solid":
-        raise ValueError("the hollow block needs shell elements (not available yet)")
     t = tissue(cfg.tissue)
-    xb, cb = block_mesh(BLOCK_SIZE, cfg.mesh)
+    deck = Deck()
+    deck.title = (f"hollowbody block test: {cfg.structure} {t.name}, {cfg.speed_kmh:g} km/h, "
+                  f"{cfg.impactor} impactor")
+    if cfg.structure == "solid":
+        xb, block_ids, top_offset, tissue_side = _add_solid_block(deck, cfg)
+    else:
+        xb, block_ids, top_offset, tissue_side = _add_hollow_block(deck, cfg)
     xi, qi = _impactor(cfg)
-    xi = xi + np.array([0.0, 0.0, BLOCK_SIZE[2] + 0.5 * IMPACTOR_SHELL_T + INITIAL_GAP])
-    nb = xb.shape[0]
-    block_ids = np.arange(1, nb + 1)
+    xi = xi + np.array([0.0, 0.0, BLOCK_SIZE[2] + top_offset + 0.5 * IMPACTOR_SHELL_T
+                        + INITIAL_GAP])
     imp_ids = IMPACTOR_NODE0 + np.arange(xi.shape[0])
     area = float(0.5 * np.linalg.norm(np.cross(xi[qi[:, 2]] - xi[qi[:, 0]],
                                                xi[qi[:, 3]] - xi[qi[:, 1]]), axis=1).sum())
     rho_imp = IMPACTOR_MASS / (area * IMPACTOR_SHELL_T)
     end = cfg.duration()
-
-    deck = Deck()
-    deck.title = (f"hollowbody block test: {cfg.structure} {t.name}, {cfg.speed_kmh:g} km/h, "
-                  f"{cfg.impactor} impactor")
-    deck.add_nodes(block_ids, xb)
     deck.add_nodes(imp_ids, xi)
-    deck.add_solids(np.arange(1, cb.shape[0] + 1), PID_TISSUE, block_ids[cb])
     deck.add_shells(IMPACTOR_ELEM0 + np.arange(qi.shape[0]), PID_IMPACTOR, imp_ids[qi],
                     thickness=IMPACTOR_SHELL_T)
-    deck.add(Part(pid=PID_TISSUE, secid=1, mid=1, hgid=1, title=f"{cfg.tissue} (solid)"))
     deck.add(Part(pid=PID_IMPACTOR, secid=2, mid=2, title=f"impactor ({cfg.impactor})"))
-    deck.add(SectionSolid(secid=1))
     deck.add(SectionShell(secid=2, t1=IMPACTOR_SHELL_T, nip=2))
-    deck.add(MatSimplifiedRubber(mid=1, ro=t.density, km=t.bulk_modulus, lcid=1))
-    deck.add(DefineCurve(lcid=1, points=np.column_stack([t.strain, t.stress]).tolist(),
-                         title=f"{cfg.tissue}: engineering stress [GPa] vs strain"))
     deck.add(MatRigid(mid=2, ro=rho_imp, e=210.0, pr=0.3, cmo=1, con1=4, con2=7))
-    deck.add(Hourglass(hgid=1, ihq=cfg.hourglass_ihq, qm=cfg.hourglass_qh))
     bottom = block_ids[xb[:, 2] < 1e-9]
     deck.add(SetNodeList(sid=1, nodes=bottom.tolist()))
     deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1, dofrx=1, dofry=1, dofrz=1))
     deck.add(InitialVelocityGeneration(id=PID_IMPACTOR, styp=2, vz=-cfg.speed))
+    ssid, sstyp = tissue_side
     deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=CONTACT_ID,
-                     heading="tissue-impactor", ssid=PID_TISSUE, sstyp=3, msid=PID_IMPACTOR,
+                     heading="tissue-impactor", ssid=ssid, sstyp=sstyp, msid=PID_IMPACTOR,
                      mstyp=3, fs=cfg.friction, fd=cfg.friction, soft=1))
     deck.add(ControlTermination(endtim=end))
     deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erode else 0))
@@ -186,6 +183,75 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     deck.add(DatabaseBinaryD3plot(dt=end / cfg.states))
     deck.add(DatabaseHistoryNode(ids=[int(imp_ids[0])]))
     return deck
+
+
+def _add_solid_block(deck, cfg: BlockConfig):
+    """Hexahedra with MAT_181; returns (nodes, ids, top offset mm, contact side)."""
+    from hollowbody.io.keyword import (
+        DefineCurve,
+        Hourglass,
+        MatSimplifiedRubber,
+        Part,
+        SectionSolid,
+    )
+
+    t = tissue(cfg.tissue)
+    xb, cb = block_mesh(BLOCK_SIZE, cfg.mesh)
+    ids = np.arange(1, xb.shape[0] + 1)
+    deck.add_nodes(ids, xb)
+    deck.add_solids(np.arange(1, cb.shape[0] + 1), PID_TISSUE, ids[cb])
+    deck.add(Part(pid=PID_TISSUE, secid=1, mid=1, hgid=1, title=f"{cfg.tissue} (solid)"))
+    deck.add(SectionSolid(secid=1))
+    deck.add(MatSimplifiedRubber(mid=1, ro=t.density, km=t.bulk_modulus, lcid=1))
+    deck.add(DefineCurve(lcid=1, points=np.column_stack([t.strain, t.stress]).tolist(),
+                         title=f"{cfg.tissue}: engineering stress [GPa] vs strain"))
+    deck.add(Hourglass(hgid=1, ihq=cfg.hourglass_ihq, qm=cfg.hourglass_qh))
+    return xb, ids, 0.0, (PID_TISSUE, 3)
+
+
+#: Part ids of the hollow walls by normal axis (x, y, z) and their part set.
+PID_WALLS = (11, 12, 13)
+PSET_WALLS = 10
+
+
+def hollow_material(cfg: BlockConfig) -> tuple[float, float, float]:
+    """(E, yield, Etan) in MPa of the walls: given, or the paper's fit for the tissue."""
+    t = tissue(cfg.tissue)
+    e = cfg.hollow_E if cfg.hollow_E is not None else t.hollow_E * 1000.0
+    y = cfg.hollow_yield if cfg.hollow_yield is not None else t.hollow_yield * 1000.0
+    return float(e), float(y), float(cfg.hollow_etan)
+
+
+def _add_hollow_block(deck, cfg: BlockConfig):
+    """Shell walls on a cubic cell grid with MAT_003 and self-contact."""
+    from hollowbody.hollow.grid import hollow_box
+    from hollowbody.io.keyword import Contact, MatPlasticKinematic, Part, SectionShell, SetPartList
+
+    t = tissue(cfg.tissue)
+    g = hollow_box(BLOCK_SIZE, cell=cfg.cell, thickness=cfg.thickness,
+                   elements_per_edge=cfg.elements_per_edge,
+                   origin=(-BLOCK_SIZE[0] / 2, -BLOCK_SIZE[1] / 2, 0.0))
+    solid_mass = t.density * BLOCK_SIZE[0] * BLOCK_SIZE[1] * BLOCK_SIZE[2]
+    rho = g.density_for_mass(solid_mass) if cfg.mass_preserving else t.density
+    e, y, etan = hollow_material(cfg)
+    ids = np.arange(1, g.nodes.shape[0] + 1)
+    deck.add_nodes(ids, g.nodes)
+    eid = 1
+    for axis, pid in enumerate(PID_WALLS):
+        sel = g.orientation == axis
+        q = g.quads[sel]
+        deck.add_shells(np.arange(eid, eid + q.shape[0]), pid, ids[q], thickness=cfg.thickness)
+        eid += q.shape[0]
+        deck.add(Part(pid=pid, secid=1, mid=1, title=f"hollow {cfg.tissue} walls normal "
+                      f"{'xyz'[axis]}"))
+    deck.add(SectionShell(secid=1, elform=2, nip=5, t1=cfg.thickness))
+    deck.add(MatPlasticKinematic(mid=1, ro=rho, e=e / 1000.0, pr=0.3, sigy=y / 1000.0,
+                                 etan=etan / 1000.0, beta=1.0))
+    deck.add(SetPartList(sid=PSET_WALLS, parts=list(PID_WALLS)))
+    if cfg.self_contact:
+        deck.add(Contact(type="AUTOMATIC_SINGLE_SURFACE", cid=2, heading="hollow self-contact",
+                         ssid=PSET_WALLS, sstyp=2, fs=cfg.friction, fd=cfg.friction, soft=1))
+    return g.nodes, ids, 0.5 * cfg.thickness, (PSET_WALLS, 2)
 
 
 @dataclass

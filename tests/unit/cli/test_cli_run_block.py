@@ -40,7 +40,7 @@ def test_run_deck_is_not_modified(tmp_path, capsys):
 @pytest.mark.parametrize("args, words", [
     (["--mesh", "7"], "does not divide"),
     (["--speed", "-3"], "positive"),
-    (["--structure", "hollow"], "hollow"),
+    (["--structure", "hollow", "--cell", "35"], "does not divide"),
 ])
 def test_block_bad_options(tmp_path, capsys, args, words):
     code = main(["block", "--out", str(tmp_path / "b"), "--quiet", *args])
