@@ -68,9 +68,10 @@ def bulk_modulus(mat: MaterialDef) -> float:
 def segment_stiffness(surf: Surface, model: Model) -> tuple[np.ndarray, np.ndarray]:
     """SOFT=0 stiffness and element depth of each segment.
 
-    Returns k_seg (s,) kN/mm (0 where no element is known) and depth (s,) mm
-    (solid faces: V / A of the element under the face; shells: thickness;
-    free segments: 0), both from the initial coordinates.
+    Returns k_seg (s,) kN/mm (0 where no element is known) and depth (s,) mm,
+    the length scale of the release depth (solid faces: V / A of the element
+    under the face; shells and free segments: sqrt(A)), both from the
+    initial coordinates.
     """
     x0 = model.node_x0
     s = surf.n_segments
@@ -79,6 +80,7 @@ def segment_stiffness(surf: Surface, model: Model) -> tuple[np.ndarray, np.ndarr
     if s == 0:
         return k, depth
     _, area = segment_normals(surf.seg, x0)
+    depth[:] = np.sqrt(area)
     solid = np.nonzero(surf.seg_kind == SEG_SOLID)[0]
     for gi in np.unique(surf.seg_group[solid]):
         sel = solid[surf.seg_group[solid] == gi]
@@ -96,7 +98,6 @@ def segment_stiffness(surf: Surface, model: Model) -> tuple[np.ndarray, np.ndarr
             sel = shell[m]
             kb = bulk_modulus(model.material_of(model.shell_groups[int(gi)].pid))
             k[sel] = kb * area[sel] / np.where(dmax[m] > 0.0, dmax[m], 1.0)
-        depth[shell] = surf.seg_thick[shell]
     return k, depth
 
 

@@ -1,0 +1,117 @@
+"""Speed of the solid element groups (one-point hexahedron + material).
+
+A 40 x 40 x 32 block (51 200 elements, 7.5 mm cubes) with *MAT_ELASTIC and with
+MAT_181 (the DESIGN muscle curve), a small random velocity field; times
+``SolidGroupRuntime.add_forces`` (N calls after warm-up, median of repeats)
+with 1 and 2 numba threads and prints microseconds per element-cycle, plus
+the split between the element kernel and the two force-assembly variants
+(serial scatter, parallel node gather).
+
+Usage: python benchmarks/bench_solid.py [--calls 50] [--repeats 5] [--threads 1 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import numba
+import numpy as np
+
+from hollowbody.elements.assembly import scatter_add
+from hollowbody.elements.solid_group import SolidGroupRuntime
+from hollowbody.elements.structured_mesh import block_mesh
+from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
+
+MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
+                          0.1, 0.2, 0.3, 0.5, 0.75, 1.0])
+MUSCLE_MPA = np.array([-11.8, -4.15, -1.90, -0.987, -0.543, -0.299, -0.153, -0.061, 0.0,
+                       0.0419, 0.0716, 0.093, 0.120, 0.139, 0.148])
+
+
+def make_runtime(kind: str, ihq: int = 1) -> tuple[SolidGroupRuntime, np.ndarray]:
+    x0, conn = block_mesh(40, 40, 32, (300.0, 300.0, 240.0))
+    group = SolidGroup(1, np.arange(1, conn.shape[0] + 1, dtype=np.int64), conn)
+    curves = {}
+    if kind == "elastic":
+        mat = MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.45})
+    else:
+        mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 1.0, "MU": 0.1, "G": 0.0, "SIGF": 0.0,
+                                                 "SGL": 1.0, "SW": 1.0, "ST": 1.0, "LCID": 1})
+        curves = {1: Curve(1, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
+    rt = SolidGroupRuntime(group, mat, HourglassDef(0, ihq=ihq), curves, x0)
+    return rt, x0
+
+
+def time_calls(fn, calls: int, repeats: int) -> float:
+    """Median seconds per call."""
+    fn()
+    samples = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            fn()
+        samples.append((time.perf_counter() - t0) / calls)
+    return statistics.median(samples)
+
+
+def bench(kind: str, ihq: int, threads: int, calls: int, repeats: int) -> dict[str, float]:
+    numba.set_num_threads(threads)
+    rt, x0 = make_runtime(kind, ihq)
+    rng = np.random.default_rng(0)
+    v = rng.normal(scale=0.1, size=x0.shape)
+    dt = 1e-4
+    x = x0 + dt * v
+    f = np.zeros_like(x0)
+    rt.add_forces(x0.copy(), np.zeros_like(x0), 0.0, f)
+    n = rt.n_elem
+
+    def full() -> None:
+        rt.add_forces(x, v, dt, f)
+
+    t_full = time_calls(full, calls, repeats)
+
+    def scatter() -> None:
+        scatter_add(rt.connectivity_used(), rt._fwork, f)
+
+    def gather() -> None:
+        rt._gather.add(rt._fwork, f)
+
+    t_scatter = time_calls(scatter, calls, repeats)
+    t_gather = time_calls(gather, calls, repeats) if rt._gather is not None else float("nan")
+    used = t_gather if (rt._gather is not None and threads > 1) else t_scatter
+    t_kernel = t_full - used
+    us = 1e6 / n
+    return {"full": t_full * us, "kernel": t_kernel * us, "scatter": t_scatter * us,
+            "gather": t_gather * us}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--calls", type=int, default=50)
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    args = ap.parse_args()
+    threads = [t for t in args.threads if t <= numba.config.NUMBA_NUM_THREADS]
+    print(f"51 200 elements, {args.calls} calls x {args.repeats} repeats (median); "
+          "microseconds per element-cycle")
+    print(f"{'case':28s} {'thr':>3s} {'total':>7s} {'kernel':>7s} {'scatter':>8s} "
+          f"{'gather':>7s}")
+    results: dict[tuple[str, int], dict[str, float]] = {}
+    for kind, ihq, label in (("elastic", 1, "hex + MAT_ELASTIC, IHQ=1"),
+                             ("rubber181", 1, "hex + MAT_181, IHQ=1"),
+                             ("rubber181", 4, "hex + MAT_181, IHQ=4")):
+        for t in threads:
+            r = bench(kind, ihq, t, args.calls, args.repeats)
+            results[(label, t)] = r
+            print(f"{label:28s} {t:3d} {r['full']:7.3f} {r['kernel']:7.3f} "
+                  f"{r['scatter']:8.3f} {r['gather']:7.3f}")
+    if 1 in threads and 2 in threads:
+        for label in dict.fromkeys(k[0] for k in results):
+            s = results[(label, 1)]["full"] / results[(label, 2)]["full"]
+            print(f"speed-up 2 threads, {label}: {s:.2f}x")
+
+
+if __name__ == "__main__":
+    main()

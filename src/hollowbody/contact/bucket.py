@@ -1,0 +1,234 @@
+"""Bucket-sort broad phase: candidate segments per slave node (numba).
+
+Each segment's bounding box, enlarged by its capture distance (how far from
+the segment a node can still be in contact: contact thickness or release
+depth) plus a *margin*, is registered in every cell of a uniform grid it
+overlaps (cell size ~ the typical enlarged box, so a segment touches a few
+cells). The (cell key, segment) pairs are sorted by key; a node looks up its
+own cell by binary search and keeps the segments whose enlarged box contains
+it. The result is a CSR list per slave node (``ptr`` (ns + 1,), ``seg``).
+
+The list stays complete while every node has moved less than ``margin / 2``
+since the sort (node and segment can then approach by at most ``margin``):
+:class:`~hollowbody.contact.runtime.ContactRuntime` re-sorts every
+``contact_sort_interval`` cycles or earlier when that bound is reached.
+Grid cells are hashed by key, never allocated as a dense grid, so a large,
+sparse model costs nothing extra.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+#: Fewer slave nodes than this: serial kernels (thread start-up costs more).
+PARALLEL_MIN_NODES = 2048
+#: Items per parallel work unit (array arguments cost an incref/decref per call).
+_CHUNK = 256
+#: Bound on grid pairs per segment before the cell size is doubled.
+_MAX_PAIRS_PER_SEGMENT = 27
+
+
+@njit(cache=True)
+def _boxes_range(s0, s1, x, seg, grow, lo, hi):
+    for s in range(s0, s1):
+        for k in range(3):
+            a = x[seg[s, 0], k]
+            b = a
+            for j in range(1, 4):
+                v = x[seg[s, j], k]
+                if v < a:
+                    a = v
+                if v > b:
+                    b = v
+            lo[s, k] = a - grow[s]
+            hi[s, k] = b + grow[s]
+
+
+@njit(cache=True, parallel=True)
+def _boxes_par(x, seg, grow, lo, hi):
+    n = seg.shape[0]
+    for c in prange((n + _CHUNK - 1) // _CHUNK):
+        _boxes_range(c * _CHUNK, min(n, (c + 1) * _CHUNK), x, seg, grow, lo, hi)
+
+
+@njit(cache=True)
+def _boxes_ser(x, seg, grow, lo, hi):
+    _boxes_range(0, seg.shape[0], x, seg, grow, lo, hi)
+
+
+def segment_boxes(x: np.ndarray, seg: np.ndarray, grow: np.ndarray, lo: np.ndarray,
+                  hi: np.ndarray, parallel: bool = False) -> None:
+    """Enlarged bounding boxes: lo/hi (S, 3) mm = min/max of the corners -/+ grow (S,)."""
+    (_boxes_par if parallel else _boxes_ser)(x, seg, grow, lo, hi)
+
+
+@njit(cache=True)
+def _cell(v, origin, h):
+    return np.int64(np.floor((v - origin) / h))
+
+
+@njit(cache=True)
+def _count_pairs(lo, hi, origin, h):
+    cnt = np.empty(lo.shape[0], np.int64)
+    for s in range(lo.shape[0]):
+        c = np.int64(1)
+        for k in range(3):
+            c *= _cell(hi[s, k], origin[k], h) - _cell(lo[s, k], origin[k], h) + 1
+        cnt[s] = c
+    return cnt
+
+
+@njit(cache=True)
+def _fill_pairs(lo, hi, origin, h, dims, cnt, keys, segs):
+    p = 0
+    for s in range(lo.shape[0]):
+        i0 = _cell(lo[s, 0], origin[0], h)
+        i1 = _cell(hi[s, 0], origin[0], h)
+        j0 = _cell(lo[s, 1], origin[1], h)
+        j1 = _cell(hi[s, 1], origin[1], h)
+        k0 = _cell(lo[s, 2], origin[2], h)
+        k1 = _cell(hi[s, 2], origin[2], h)
+        for k in range(k0, k1 + 1):
+            for j in range(j0, j1 + 1):
+                for i in range(i0, i1 + 1):
+                    keys[p] = i + dims[0] * (j + dims[1] * k)
+                    segs[p] = s
+                    p += 1
+
+
+@njit(cache=True)
+def _lower_bound(a, v):
+    lo = 0
+    hi = a.shape[0]
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if a[mid] < v:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg,
+                 ptr, out, fill):
+    """Count (fill False: into ptr[i+1]) or write (fill True: into out) candidates."""
+    for i in range(i0, i1):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        ci = _cell(px, origin[0], h)
+        cj = _cell(py, origin[1], h)
+        ck = _cell(pz, origin[2], h)
+        n = 0
+        if 0 <= ci < dims[0] and 0 <= cj < dims[1] and 0 <= ck < dims[2]:
+            key = ci + dims[0] * (cj + dims[1] * ck)
+            q = _lower_bound(skeys, key)
+            base = ptr[i]
+            while q < skeys.shape[0] and skeys[q] == key:
+                s = ssegs[q]
+                q += 1
+                if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
+                        and lo[s, 2] <= pz <= hi[s, 2]):
+                    if (seg[s, 0] == nd or seg[s, 1] == nd or seg[s, 2] == nd
+                            or seg[s, 3] == nd):
+                        continue
+                    skip = False
+                    for e in range(ex_ptr[i], ex_ptr[i + 1]):
+                        if ex_seg[e] == s:
+                            skip = True
+                            break
+                    if skip:
+                        continue
+                    if fill:
+                        out[base + n] = s
+                    n += 1
+        if not fill:
+            ptr[i + 1] = n
+
+
+@njit(cache=True, parallel=True)
+def _cands_par(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out,
+               fill):
+    n = nodes.shape[0]
+    for c in prange((n + _CHUNK - 1) // _CHUNK):
+        _cands_range(c * _CHUNK, min(n, (c + 1) * _CHUNK), x, nodes, seg, lo, hi, origin, h,
+                     dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out, fill)
+
+
+@njit(cache=True)
+def _cands_ser(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out,
+               fill):
+    _cands_range(0, nodes.shape[0], x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs,
+                 ex_ptr, ex_seg, ptr, out, fill)
+
+
+def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndarray,
+                ex_ptr: np.ndarray | None = None, ex_seg: np.ndarray | None = None,
+                parallel: bool | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Candidate segments of each node.
+
+    x: (L, 3) float64 mm; nodes: (ns,) int32 rows of x (the slave nodes);
+    seg: (S, 4) int32 rows of x; grow: (S,) float64 mm how far around each
+    segment's bounding box to look (capture distance + margin).
+    ex_ptr / ex_seg: optional CSR per node of segments to leave out (besides
+    the segments that contain the node, always left out).
+    parallel: use the threaded kernels (default: when there are at least
+    PARALLEL_MIN_NODES nodes).
+    Returns ptr (ns + 1,) int64 and cand (ptr[-1],) int32 segment indices.
+    """
+    if parallel is None:
+        parallel = nodes.shape[0] >= PARALLEL_MIN_NODES
+    ns = nodes.shape[0]
+    if ex_ptr is None or ex_seg is None:
+        ex_ptr = np.zeros(ns + 1, np.int64)
+        ex_seg = np.zeros(0, np.int32)
+    ptr = np.zeros(ns + 1, np.int64)
+    if seg.shape[0] == 0 or ns == 0:
+        return ptr, np.zeros(0, np.int32)
+    lo = np.empty((seg.shape[0], 3))
+    hi = np.empty((seg.shape[0], 3))
+    segment_boxes(x, seg, grow, lo, hi, parallel)
+    origin = lo.min(axis=0)
+    ext = (hi - lo).max(axis=1)
+    h = float(np.median(ext))
+    span = float((hi.max(axis=0) - origin).max())
+    h = max(h, span / 2.0e5, 1.0e-9)
+    while True:
+        cnt = _count_pairs(lo, hi, origin, h)
+        if cnt.sum() <= _MAX_PAIRS_PER_SEGMENT * seg.shape[0] + 64:
+            break
+        h *= 2.0
+    dims = (np.floor((hi.max(axis=0) - origin) / h).astype(np.int64) + 1)
+    total = int(cnt.sum())
+    keys = np.empty(total, np.int64)
+    segs = np.empty(total, np.int32)
+    _fill_pairs(lo, hi, origin, h, dims, cnt, keys, segs)
+    order = np.argsort(keys, kind="stable")
+    skeys = keys[order]
+    ssegs = segs[order]
+    dummy = np.zeros(0, np.int32)
+    cands = _cands_par if parallel else _cands_ser
+    cands(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, dummy, False)
+    ptr[0] = 0
+    np.cumsum(ptr, out=ptr)
+    cand = np.empty(int(ptr[-1]), np.int32)
+    cands(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, cand, True)
+    return ptr, cand
+
+
+def brute_force_candidates(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray,
+                           grow: np.ndarray) -> list[set[int]]:
+    """Reference for tests: per node the segments whose enlarged box contains it."""
+    lo = np.empty((seg.shape[0], 3))
+    hi = np.empty((seg.shape[0], 3))
+    segment_boxes(x, seg, grow, lo, hi)
+    out = []
+    for nd in nodes:
+        p = x[nd]
+        inside = np.all((lo <= p) & (p <= hi), axis=1)
+        inside &= ~np.any(seg == nd, axis=1)
+        out.append(set(np.nonzero(inside)[0].tolist()))
+    return out

@@ -1,0 +1,396 @@
+"""Node-to-segment penalty contact with Coulomb friction (numba kernels).
+
+One *pass* checks a list of nodes against a list of segments (the bucket
+sort's candidates). For node s and the nearest candidate segment it is
+inside of (closest-point projection x_p, unit normal n, shape functions
+N_a at x_p; see :mod:`hollowbody.contact.geometry`), with d = (x_s - x_p) . n
+and reach = (t_node + t_seg) / 2:
+
+* one-sided (solid faces, outward n): contact when -depth < d < reach,
+  penetration g = reach - d, force direction +n; ``depth`` is the release
+  depth (``penmax`` times the depth V / A of the element under the face);
+* two-sided (shells, free segments): a node arriving contacts when
+  |d| < reach, g = reach - |d|, direction sign(d) n; while it stays in
+  contact it keeps that side (the last contact normal is remembered), so a
+  node pushed past the mid-surface is still pushed back,
+  g = reach - sign * d up to the release depth ``penmax`` * sqrt(A) behind.
+
+Normal force ``F_n = k g`` (minus the optional VDC damping ``c v_n``, never
+adhesive), friction by an elastic trial with the same spring k::
+
+    f* = f_t(old, rotated into the current tangent plane) - k * v_t * dt
+    mu = FD + (FS - FD) * exp(-DC * |v_t|)
+    f_t = f* if |f*| <= mu F_n else mu F_n f* / |f*|
+
+(v_t the tangential velocity of the node relative to the contact point;
+f_t is stored per node between cycles). The pair force F = F_n n' + f_t acts
+on the node and -N_a F on the segment's nodes: momentum is conserved exactly.
+
+Per-node results are computed in parallel (``prange`` over nodes, each writes
+only its own row), then scattered serially (race-free). No allocation in the
+loops.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit, prange
+
+from hollowbody.contact.geometry import project_corners
+
+#: Nodes (segments) per parallel work item: array arguments cost an
+#: incref/decref per call, so kernels are called per chunk, not per item.
+_CHUNK = 256
+
+
+@njit(cache=True)
+def _frames_range(s0, s1, x, seg, cen, nrm, rad2, warp):
+    for s in range(s0, s1):
+        a = seg[s, 0]
+        b = seg[s, 1]
+        c = seg[s, 2]
+        d = seg[s, 3]
+        nc = 3.0 if c == d else 4.0
+        for k in range(3):
+            tot = x[a, k] + x[b, k] + x[c, k]
+            if c != d:
+                tot += x[d, k]
+            cen[s, k] = tot / nc
+        ux = x[c, 0] - x[a, 0]
+        uy = x[c, 1] - x[a, 1]
+        uz = x[c, 2] - x[a, 2]
+        vx = x[d, 0] - x[b, 0]
+        vy = x[d, 1] - x[b, 1]
+        vz = x[d, 2] - x[b, 2]
+        nx = uy * vz - uz * vy
+        ny = uz * vx - ux * vz
+        nz = ux * vy - uy * vx
+        nn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        if nn > 0.0:
+            nx /= nn
+            ny /= nn
+            nz /= nn
+        nrm[s, 0] = nx
+        nrm[s, 1] = ny
+        nrm[s, 2] = nz
+        r = 0.0
+        for j in range(4):
+            q = seg[s, j]
+            dx = x[q, 0] - cen[s, 0]
+            dy = x[q, 1] - cen[s, 1]
+            dz = x[q, 2] - cen[s, 2]
+            dd = dx * dx + dy * dy + dz * dz
+            if dd > r:
+                r = dd
+        rad2[s] = r
+        h = 0.0
+        for j in range(4):
+            q = seg[s, j]
+            e = abs((x[q, 0] - cen[s, 0]) * nx + (x[q, 1] - cen[s, 1]) * ny
+                    + (x[q, 2] - cen[s, 2]) * nz)
+            if e > h:
+                h = e
+        warp[s] = h
+
+
+@njit(cache=True)
+def segment_frames(x, seg, cen, nrm, rad2, warp):
+    """Per segment: centroid cen (S, 3), unit mean normal nrm (S, 3), squared radius
+    rad2 (S,) mm^2 (farthest corner) and warp (S,) mm (farthest corner from the
+    mean plane: the segment lies within +-warp of it).
+
+    Serial on purpose: it is ~5 % of a pass, and one parallel region less per
+    cycle matters more (thread wake-up) than splitting it.
+    """
+    _frames_range(0, seg.shape[0], x, seg, cen, nrm, rad2, warp)
+
+
+@njit(cache=True)
+def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k,
+                 s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg,
+                 ow, of, ogap):
+    """Contact of nodes i0 <= i < i1 of a pass (body of :func:`contact_pass`)."""
+    slsfac = params[0]
+    soft = params[1]
+    sofscl = params[2]
+    fs = params[3]
+    fd = params[4]
+    dc = params[5]
+    vdc = params[6]
+    fric = params[7] > 0.0
+    for i in range(i0, i1):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        tn = n_thick[i]
+        mx = nprev[i, 0]
+        my = nprev[i, 1]
+        mz = nprev[i, 2]
+        best = -1
+        best_ad = 1.0e300
+        bgap = 0.0
+        bnx = bny = bnz = 0.0
+        bw0 = bw1 = bw2 = bw3 = 0.0
+        for q in range(ptr[i], ptr[i + 1]):
+            s = cand[q]
+            reach = 0.5 * (tn + s_thick[s])
+            two = s_two[s] != 0
+            lim = max(reach, s_depth[s])
+            rx = px - cen[s, 0]
+            ry = py - cen[s, 1]
+            rz = pz - cen[s, 2]
+            dn = rx * nrm[s, 0] + ry * nrm[s, 1] + rz * nrm[s, 2]
+            r2 = rad2[s]
+            if abs(dn) > lim + warp[s]:
+                continue
+            if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
+                continue
+            a = seg[s, 0]
+            b = seg[s, 1]
+            c = seg[s, 2]
+            dd = seg[s, 3]
+            ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
+                px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
+                x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd)
+            if not (ok and inside):
+                continue
+            d = (px - qx) * nx + (py - qy) * ny + (pz - qz) * nz
+            ad = abs(d)
+            if two:
+                # side: the one the node was pushed to last cycle when that
+                # contact normal is about parallel to this segment's, else its side now
+                al = nx * mx + ny * my + nz * mz
+                if al > 0.5 or al < -0.5:
+                    sg = 1.0 if al > 0.0 else -1.0
+                    de = sg * d
+                    if de >= reach or de <= -s_depth[s]:
+                        continue
+                    gap = reach - de
+                else:
+                    if ad >= reach:
+                        continue
+                    gap = reach - ad
+                    sg = 1.0 if d >= 0.0 else -1.0
+                nx *= sg
+                ny *= sg
+                nz *= sg
+            else:
+                if d >= reach or d <= -s_depth[s]:
+                    continue
+                gap = reach - d
+            if ad < best_ad:
+                best_ad = ad
+                best = s
+                bgap = gap
+                bnx = nx
+                bny = ny
+                bnz = nz
+                bw0 = w0
+                bw1 = w1
+                bw2 = w2
+                bw3 = w3
+        oseg[i] = best
+        if best < 0:
+            ft[i, 0] = 0.0
+            ft[i, 1] = 0.0
+            ft[i, 2] = 0.0
+            of[i, 0] = 0.0
+            of[i, 1] = 0.0
+            of[i, 2] = 0.0
+            ogap[i] = 0.0
+            nprev[i, 0] = 0.0
+            nprev[i, 1] = 0.0
+            nprev[i, 2] = 0.0
+            continue
+        nprev[i, 0] = bnx
+        nprev[i, 1] = bny
+        nprev[i, 2] = bnz
+        s = best
+        ow[i, 0] = bw0
+        ow[i, 1] = bw1
+        ow[i, 2] = bw2
+        ow[i, 3] = bw3
+        ogap[i] = bgap
+        # stiffness: SOFT=0 minimum of node and segment (PENOPT=1), SOFT=1 max with mass-based
+        kn = n_k[i]
+        ks = s_k[s]
+        if kn > 0.0 and ks > 0.0:
+            k0 = slsfac * min(kn, ks)
+        else:
+            k0 = slsfac * max(kn, ks)
+        mn = n_mass[i]
+        ms = s_mass[s]
+        mstar = min(mn, ms)
+        k = k0
+        if dtc > 0.0 and mstar < 1.0e300:
+            k1 = 0.5 * mstar / (dtc * dtc)
+            if soft > 0.0:
+                k = max(k0, sofscl * k1)
+            elif k0 <= 0.0:
+                k = 0.1 * k1  # no element behind either side: SOFT=1 default scale
+        # relative velocity node - contact point
+        a = seg[s, 0]
+        b = seg[s, 1]
+        c = seg[s, 2]
+        dd = seg[s, 3]
+        vrx = v[nd, 0] - (bw0 * v[a, 0] + bw1 * v[b, 0] + bw2 * v[c, 0] + bw3 * v[dd, 0])
+        vry = v[nd, 1] - (bw0 * v[a, 1] + bw1 * v[b, 1] + bw2 * v[c, 1] + bw3 * v[dd, 1])
+        vrz = v[nd, 2] - (bw0 * v[a, 2] + bw1 * v[b, 2] + bw2 * v[c, 2] + bw3 * v[dd, 2])
+        vn = vrx * bnx + vry * bny + vrz * bnz
+        fn = k * bgap
+        if vdc > 0.0 and mstar < 1.0e300:
+            inv = 0.0
+            if mn < 1.0e300:
+                inv += 1.0 / mn
+            if ms < 1.0e300:
+                inv += 1.0 / ms
+            omega = math.sqrt(k * inv)
+            fn -= 0.01 * vdc * 2.0 * mstar * omega * vn
+            if fn < 0.0:
+                fn = 0.0
+        fx = fn * bnx
+        fy = fn * bny
+        fz = fn * bnz
+        if fric:
+            vtx = vrx - vn * bnx
+            vty = vry - vn * bny
+            vtz = vrz - vn * bnz
+            # old tangential force rotated into the current tangent plane
+            ox = ft[i, 0]
+            oy = ft[i, 1]
+            oz = ft[i, 2]
+            omag = math.sqrt(ox * ox + oy * oy + oz * oz)
+            on = ox * bnx + oy * bny + oz * bnz
+            ox -= on * bnx
+            oy -= on * bny
+            oz -= on * bnz
+            pmag = math.sqrt(ox * ox + oy * oy + oz * oz)
+            if pmag > 0.0:
+                sc = omag / pmag
+                ox *= sc
+                oy *= sc
+                oz *= sc
+            tx = ox - k * vtx * dt
+            ty = oy - k * vty * dt
+            tz = oz - k * vtz * dt
+            vt = math.sqrt(vtx * vtx + vty * vty + vtz * vtz)
+            mu = fd + (fs - fd) * math.exp(-dc * vt)
+            fyld = mu * fn
+            tm = math.sqrt(tx * tx + ty * ty + tz * tz)
+            if tm > fyld:
+                sc = fyld / tm if tm > 0.0 else 0.0
+                tx *= sc
+                ty *= sc
+                tz *= sc
+            ft[i, 0] = tx
+            ft[i, 1] = ty
+            ft[i, 2] = tz
+            fx += tx
+            fy += ty
+            fz += tz
+        of[i, 0] = fx
+        of[i, 1] = fy
+        of[i, 2] = fz
+
+
+@njit(cache=True, parallel=True)
+def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
+                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg, ow,
+                 of, ogap):
+    """Detect contact and compute the pair force of every node of one pass.
+
+    x, v: (L, 3) float64 mm, mm/ms (local rows); dt, dtc: ms (step, SOFT=1
+    reference step; dtc <= 0 disables the mass-based stiffness).
+    nodes (ns,) int32 rows of x; n_thick (ns,) mm; n_k (ns,) kN/mm node
+    stiffness (SOFT=0, scale factor applied, 0 = unknown); n_mass (ns,) kg
+    (inf for rigid-body nodes).
+    seg (S, 4) int32 rows of x; s_thick, s_k, s_mass as for nodes; s_depth
+    (S,) mm release depth; s_two (S,) int8 1 = two-sided.
+    cen, nrm, rad2, warp: :func:`segment_frames`; ptr (ns + 1,) int64, cand int32:
+    candidate segments per node.
+    params (8,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc, vdc, friction on.
+    ft (ns, 3) kN friction state, nprev (ns, 3) contact normal of the last
+    cycle (zero when not in contact; two-sided side memory) (in/out).
+    Outputs: oseg (ns,) int32 segment in contact or -1, ow (ns, 4) shape
+    functions, of (ns, 3) kN force on the node, ogap (ns,) mm penetration.
+    """
+    ns = nodes.shape[0]
+    nch = (ns + _CHUNK - 1) // _CHUNK
+    for c in prange(nch):
+        _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, v, dt, dtc, nodes, n_thick, n_k,
+                     n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp,
+                     ptr, cand, params, ft, nprev, oseg, ow, of, ogap)
+
+
+@njit(cache=True)
+def contact_pass_serial(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
+                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg, ow,
+                 of, ogap):
+    """Serial :func:`contact_pass` (small passes: no thread start-up)."""
+    _nodes_range(0, nodes.shape[0], x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick,
+                 s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev,
+                 oseg, ow, of, ogap)
+
+
+@njit(cache=True)
+def scatter_pass(nodes, seg, oseg, ow, of, f, fsum):
+    """Add the pair forces of one pass into f (L, 3) kN (serial, race-free).
+
+    Node gets +F, the segment's corners -N_a F. fsum (3,) accumulates the
+    sum of F (force on the pass's nodes). Returns the number of nodes in contact.
+    """
+    n = 0
+    for i in range(nodes.shape[0]):
+        s = oseg[i]
+        if s < 0:
+            continue
+        n += 1
+        nd = nodes[i]
+        tri = seg[s, 3] == seg[s, 2]
+        for k in range(3):
+            fk = of[i, k]
+            f[nd, k] += fk
+            fsum[k] += fk
+            f[seg[s, 0], k] -= ow[i, 0] * fk
+            f[seg[s, 1], k] -= ow[i, 1] * fk
+            f[seg[s, 2], k] -= ow[i, 2] * fk
+            if not tri:
+                f[seg[s, 3], k] -= ow[i, 3] * fk
+    return n
+
+
+@njit(cache=True)
+def gather(x, v, nodes, xl, vl, xsort):
+    """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return max squared
+    displacement since the last sort (xsort (L, 3))."""
+    m = 0.0
+    for i in range(nodes.shape[0]):
+        g = nodes[i]
+        dd = 0.0
+        for k in range(3):
+            xv = x[g, k]
+            xl[i, k] = xv
+            vl[i, k] = v[g, k]
+            e = xv - xsort[i, k]
+            dd += e * e
+        if dd > m:
+            m = dd
+    return m
+
+
+@njit(cache=True)
+def finish(nodes, fl, fprev, xl, xprev, f):
+    """Scatter fl (L, 3) into global f; return the increment of contact energy
+    -1/2 (f_prev + f) . (x - x_prev) (J); roll fprev and xprev forward."""
+    de = 0.0
+    for i in range(nodes.shape[0]):
+        g = nodes[i]
+        for k in range(3):
+            de -= 0.5 * (fprev[i, k] + fl[i, k]) * (xl[i, k] - xprev[i, k])
+            f[g, k] += fl[i, k]
+            fprev[i, k] = fl[i, k]
+            xprev[i, k] = xl[i, k]
+    return de
+

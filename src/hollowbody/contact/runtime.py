@@ -1,0 +1,301 @@
+"""ContactRuntime: one *CONTACT_AUTOMATIC_... definition during a run.
+
+The solver creates one :class:`ContactRuntime` per :class:`ContactDef` and
+calls :meth:`ContactRuntime.add_forces` once per cycle with the new
+coordinates. Kinds:
+
+* ``nodes_to_surface``: one pass, slave nodes against master segments;
+* ``surface_to_surface``: two passes (slave nodes vs master segments, master
+  nodes vs slave segments), symmetric;
+* ``single_surface``: one pass, every node of the surface against every
+  segment of it except the segments that contain the node and the segments
+  next to those (sharing a corner with one): a thick shell bent at an element
+  edge is not in contact with itself.
+
+In every kind, node-segment pairs that are already in contact at t = 0 and
+joined through the mesh (shell T-junctions, thick shells meeting at an
+angle, surfaces of different parts sharing nodes) are left out for the whole
+run, see :mod:`hollowbody.contact.exclusion`.
+
+All node and segment references are translated to a compact local numbering
+(the nodes of this contact only); coordinates and velocities are gathered
+into work arrays each cycle, forces scattered back. Every work array is
+allocated here, none per cycle (the bucket sort, every
+``controls.contact_sort_interval`` cycles, allocates its CSR lists).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.contact.bucket import bucket_sort
+from hollowbody.contact.exclusion import (
+    edge_graph,
+    junction_exclusions,
+    merge_csr,
+    ring_exclusions,
+)
+from hollowbody.contact.penalty import (
+    contact_pass,
+    contact_pass_serial,
+    finish,
+    gather,
+    scatter_pass,
+    segment_frames,
+)
+from hollowbody.contact.stiffness import (
+    node_effective_mass,
+    node_stiffness,
+    segment_mass,
+    segment_stiffness,
+)
+from hollowbody.contact.surface import SEG_SOLID, Surface, build_surface, model_surface
+from hollowbody.errors import UserInputError
+from hollowbody.model.model import ContactDef, Model
+
+#: Release depth, as a fraction of the element depth V / A behind a solid face
+#: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
+PENMAX = 0.4
+#: Passes with fewer nodes than this run serially (no parallel start-up cost).
+PARALLEL_MIN_NODES = 2048
+#: Re-sort when a node has moved this fraction of the bucket margin.
+_RESORT_FRACTION = 0.5
+
+
+class _Pass:
+    """Arrays of one node-vs-segment pass (local numbering), see contact_pass."""
+
+    def __init__(self, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth,
+                 s_two, sign: float) -> None:
+        self.nodes = np.ascontiguousarray(nodes, dtype=np.int32)
+        self.n_thick = np.ascontiguousarray(n_thick, dtype=np.float64)
+        self.n_k = np.ascontiguousarray(n_k, dtype=np.float64)
+        self.n_mass = np.ascontiguousarray(n_mass, dtype=np.float64)
+        self.seg = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 4)
+        self.s_thick = np.ascontiguousarray(s_thick, dtype=np.float64)
+        self.s_k = np.ascontiguousarray(s_k, dtype=np.float64)
+        self.s_mass = np.ascontiguousarray(s_mass, dtype=np.float64)
+        self.s_depth = np.ascontiguousarray(s_depth, dtype=np.float64)
+        self.s_two = np.ascontiguousarray(s_two, dtype=np.int8)
+        self.sign = sign
+        ns, nseg = self.nodes.shape[0], self.seg.shape[0]
+        tmax = float(self.n_thick.max()) if ns else 0.0
+        #: (S,) mm farthest a node can be from a segment and still be in contact
+        self.capture = np.maximum(self.s_depth, 0.5 * (tmax + self.s_thick))
+        self.ex_ptr = np.zeros(ns + 1, np.int64)
+        self.ex_seg = np.zeros(0, np.int32)
+        self.cen = np.zeros((nseg, 3))
+        self.nrm = np.zeros((nseg, 3))
+        self.rad2 = np.zeros(nseg)
+        self.warp = np.zeros(nseg)
+        self.ptr = np.zeros(ns + 1, np.int64)
+        self.cand = np.zeros(0, np.int32)
+        self.ft = np.zeros((ns, 3))
+        self.nprev = np.zeros((ns, 3))
+        self.oseg = np.full(ns, -1, np.int32)
+        self.ow = np.zeros((ns, 4))
+        self.of = np.zeros((ns, 3))
+        self.ogap = np.zeros(ns)
+        self.fsum = np.zeros(3)
+
+
+class ContactRuntime:
+    """Penalty contact of one :class:`ContactDef` (see module docstring).
+
+    node_mass: (n,) kg lumped nodal masses (rigid-part nodes: their nodal
+    share); rigid_node: (n,) bool, True for nodes of rigid parts (SOFT=1 and
+    damping then use the deformable side's mass).
+
+    After each :meth:`add_forces`: ``slave_force`` (3,) kN resultant contact
+    force on the slave side, ``master_force`` = -slave_force (both zero for
+    single-surface contact), ``energy`` J cumulative contact work (penalty
+    springs + friction), ``n_active`` nodes in contact.
+    """
+
+    def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
+                 rigid_node: np.ndarray) -> None:
+        self.cid = cdef.cid
+        self.kind = cdef.kind
+        self.cdef = cdef
+        #: release depth of solid faces / element depth (see set_penmax)
+        self.penmax = PENMAX
+        #: passes with at least this many nodes use the parallel kernels
+        self.parallel_min_nodes = PARALLEL_MIN_NODES
+        self.sort_interval = max(1, int(model.controls.contact_sort_interval or 100))
+        n = model.n_nodes
+        node_mass = np.asarray(node_mass, dtype=np.float64)
+        rigid_node = np.asarray(rigid_node, dtype=bool)
+        self._params = np.array([model.controls.slsfac, 1.0 if cdef.soft >= 1 else 0.0,
+                                 cdef.sofscl, cdef.fs, cdef.fd, cdef.dc, cdef.vdc,
+                                 1.0 if (cdef.fs > 0.0 or cdef.fd > 0.0) else 0.0])
+        ms_cache: dict[float, Surface] = {}
+
+        def msurf(t: float) -> Surface:
+            if t not in ms_cache:
+                ms_cache[t] = model_surface(model, t)
+            return ms_cache[t]
+
+        slave = build_surface(cdef.slave, model, cdef.sst,
+                              msurf(cdef.sst) if cdef.slave.kind in ("nodes", "segments")
+                              else None)
+        master = None
+        if cdef.kind in ("nodes_to_surface", "surface_to_surface"):
+            if cdef.master is None:
+                raise UserInputError(f"contact {cdef.cid}: {cdef.kind} needs a master side")
+            master = build_surface(cdef.master, model, cdef.mst,
+                                   msurf(cdef.mst) if cdef.master.kind in ("nodes", "segments")
+                                   else None)
+            if master.n_segments == 0:
+                raise UserInputError(f"contact {cdef.cid}: master side has no segments")
+        elif cdef.kind != "single_surface":
+            raise UserInputError(f"contact {cdef.cid}: unknown contact kind {cdef.kind!r}")
+        self.slave_surface = slave
+        self.master_surface = master
+
+        def side_arrays(surf: Surface, t_override: float):
+            k_seg, depth = segment_stiffness(surf, model)
+            if surf.n_segments:
+                k_node = node_stiffness(surf.nodes, surf.seg, k_seg, n)
+            else:  # node set: stiffness of the model's segments through the node
+                ms = msurf(t_override)
+                k_ms, _ = segment_stiffness(ms, model)
+                k_node = node_stiffness(surf.nodes, ms.seg, k_ms, n)
+            # release depth = penmax * depth (solids V / A, shells sqrt(A))
+            return k_seg, depth, k_node
+
+        sk, sdepth, snk = side_arrays(slave, cdef.sst)
+        parts = [slave.nodes, slave.seg.ravel()]
+        if master is not None:
+            mk, mdepth, mnk = side_arrays(master, cdef.mst)
+            parts += [master.nodes, master.seg.ravel()]
+        self.nodes = np.unique(np.concatenate(parts).astype(np.int64))  # (L,) global
+        loc = np.full(n, -1, np.int64)
+        loc[self.nodes] = np.arange(self.nodes.shape[0])
+
+        def mk_pass(nsurf: Surface, nk, ssurf: Surface, segk, sdep, sf_n, sf_s, sign):
+            return _Pass(loc[nsurf.nodes], nsurf.node_thick, sf_n * nk,
+                         node_effective_mass(nsurf.nodes, node_mass, rigid_node),
+                         loc[ssurf.seg], ssurf.seg_thick, sf_s * segk,
+                         segment_mass(ssurf.seg, node_mass, rigid_node), sdep,
+                         (ssurf.seg_kind != SEG_SOLID).astype(np.int8), sign)
+
+        self.passes: list[_Pass] = []
+        if master is not None:
+            self.passes.append(mk_pass(slave, snk, master, mk, mdepth, cdef.sfs, cdef.sfm, 1.0))
+            if cdef.kind == "surface_to_surface" and slave.n_segments:
+                self.passes.append(mk_pass(master, mnk, slave, sk, sdepth, cdef.sfm, cdef.sfs,
+                                           -1.0))
+        else:
+            if slave.n_segments == 0:
+                raise UserInputError(f"contact {cdef.cid}: single surface has no segments")
+            self.passes.append(mk_pass(slave, snk, slave, sk, sdepth, cdef.sfs, cdef.sfs, 0.0))
+        for p in self.passes:
+            p.elem_depth = p.s_depth.copy()
+        self.set_penmax(PENMAX, exclusions=False)
+        #: initial contacts between surfaces not joined by the mesh (they push apart)
+        self.n_initial_penetrations = 0
+        self._x0 = model.node_x0[self.nodes]
+        self._exclude_junctions(self._x0)
+
+        nl = self.nodes.shape[0]
+        self._xl = np.zeros((nl, 3))
+        self._vl = np.zeros((nl, 3))
+        self._xsort = np.zeros((nl, 3))
+        self._xprev = np.zeros((nl, 3))
+        self._fl = np.zeros((nl, 3))
+        self._fprev = np.zeros((nl, 3))
+        self._margin = 0.0
+        self._last_sort = -1
+        self._dtc = 0.0
+        self._first = True
+        self.n_sorts = 0
+        self.slave_force = np.zeros(3)
+        self.master_force = np.zeros(3)
+        self.energy = 0.0
+        self.n_active = 0
+
+    # ------------------------------------------------------------------
+    def set_penmax(self, penmax: float, exclusions: bool = True) -> None:
+        """Release depth as a fraction of the segment's depth scale.
+
+        A node deeper than ``penmax * V / A`` behind a solid face (LS-DYNA's
+        automatic contacts: PENMAX, default 0.4), or than ``penmax * sqrt(A)``
+        past a shell's mid-surface on the far side from where it came, is
+        released. Call before the first :meth:`add_forces`.
+        """
+        self.penmax = float(penmax)
+        for p in self.passes:
+            p.s_depth = np.ascontiguousarray(self.penmax * p.elem_depth)
+            tmax = float(p.n_thick.max()) if p.nodes.shape[0] else 0.0
+            p.capture = np.maximum(p.s_depth, 0.5 * (tmax + p.s_thick))
+        if exclusions:
+            self._exclude_junctions(self._x0)
+        self._first = True
+
+    def _exclude_junctions(self, x0: np.ndarray) -> None:
+        """Leave out mesh-neighbour pairs already in contact at t = 0 (see exclusion)."""
+        graph = edge_graph([p.seg for p in self.passes], x0)
+        self.n_initial_penetrations = 0
+        for p in self.passes:
+            if p.seg.shape[0] == 0:
+                continue
+            ptr, cand = bucket_sort(x0, p.nodes, p.seg, p.capture)
+            p.ex_ptr, p.ex_seg, kept = junction_exclusions(
+                x0, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two, ptr, cand, graph)
+            self.n_initial_penetrations += kept
+            if p.sign == 0.0:  # single surface: also the segments next to the node's own
+                rp, rs = ring_exclusions(p.nodes, p.seg, x0.shape[0])
+                p.ex_ptr, p.ex_seg = merge_csr(p.ex_ptr, p.ex_seg, rp, rs)
+
+    def _sort(self, dt: float, cycle: int) -> None:
+        vmax = float(np.sqrt((self._vl ** 2).sum(axis=1).max())) if self._vl.size else 0.0
+        for p in self.passes:
+            if p.seg.shape[0] == 0:
+                continue
+            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp)
+        lseg = float(np.median(np.concatenate([2.0 * np.sqrt(p.rad2) for p in self.passes])))
+        self._margin = min(max(2.0 * vmax * max(dt, 0.0) * self.sort_interval, 0.1 * lseg),
+                           lseg)
+        for p in self.passes:
+            p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
+                                        p.ex_ptr, p.ex_seg,
+                                        p.nodes.shape[0] >= self.parallel_min_nodes)
+        self._xsort[:] = self._xl
+        self._last_sort = cycle
+        self.n_sorts += 1
+
+    def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float, cycle: int,
+                   f: np.ndarray) -> None:
+        """Add the contact forces at t^{n+1} into f.
+
+        x: (n, 3) float64 mm coordinates at t^{n+1}; v: (n, 3) float64 mm/ms
+        velocities at t^{n+1/2}; dt: ms, the step just taken (also the
+        SOFT=1 reference); cycle: cycle number; f: (n, 3) float64 kN, added to.
+        """
+        md2 = gather(x, v, self.nodes, self._xl, self._vl, self._xsort)
+        if self._first:
+            self._xprev[:] = self._xl
+        if dt > 0.0 and (self._dtc <= 0.0 or dt > 1.05 * self._dtc):
+            self._dtc = dt
+        if (self._first or cycle - self._last_sort >= self.sort_interval
+                or md2 > (_RESORT_FRACTION * self._margin) ** 2):
+            self._sort(dt, cycle)
+        self._first = False
+        self._fl[:] = 0.0
+        self.slave_force[:] = 0.0
+        n_act = 0
+        for p in self.passes:
+            if p.seg.shape[0] == 0:
+                continue
+            par = p.nodes.shape[0] >= self.parallel_min_nodes
+            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp)
+            (contact_pass if par else contact_pass_serial)(
+                self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass, p.seg,
+                p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
+                p.ptr, p.cand, self._params, p.ft, p.nprev, p.oseg, p.ow, p.of, p.ogap)
+            p.fsum[:] = 0.0
+            n_act += scatter_pass(p.nodes, p.seg, p.oseg, p.ow, p.of, self._fl, p.fsum)
+            self.slave_force += p.sign * p.fsum
+        self.master_force[:] = -self.slave_force
+        self.n_active = n_act
+        self.energy += finish(self.nodes, self._fl, self._fprev, self._xl, self._xprev, f)

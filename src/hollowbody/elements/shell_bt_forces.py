@@ -1,0 +1,503 @@
+"""Element kernel of the Belytschko-Lin-Tsay shell and the race-free nodal gather.
+
+One call of :func:`bt_shell_forces` does, for every live element (``prange``):
+
+1. strain rates from the half-step geometry ``x^{n+1/2} = x^{n+1} - dt/2 v``
+   (midpoint rule: a rigid rotation of the chord velocities gives exactly zero
+   in-plane strain) and the velocities / angular velocities at t^{n+1/2};
+2. through-thickness integration (``nip`` points, plane stress): membrane +
+   z * curvature strain increments, material update per point in the
+   co-rotational frame (stress, effective plastic strain, back stress),
+   resultants N = sum w s, M = sum w z s; transverse shear elastic, uniform,
+   Q = SHRF * t * tau;
+3. Belytschko-Tsay hourglass control of the 5 modes (in-plane x, y,
+   out-of-plane w, rotations about e1, e2) from the half-step geometry;
+4. nodal forces and moments from the resultants with the geometry at t^{n+1}::
+
+       f_x = A (B1 Nxx + B2 Nxy),   f_y = A (B2 Nyy + B1 Nxy),   f_z = A (B1 Qxz + B2 Qyz)
+       m_x = A (-B2 Myy - B1 Mxy - Qyz/4),   m_y = A (B1 Mxx + B2 Mxy + Qxz/4)
+
+   (the transpose of the strain-rate operator), rotated to global axes and
+   stored with a minus sign (force on the node) in ``fe`` (e, 4, 6);
+5. the critical time step L_s / c, the internal and hourglass energy
+   increments and a representative global stress for output.
+
+Hourglass (per element, generalized rates q = sum_I gamma_I v_I in the local
+frame; forces f_I = gamma_I Q). Reference stiffnesses (LS-DYNA's
+Belytschko-Tsay stiffness form with r = 1)::
+
+    k_m = E t A (B.B) / 8,   k_w = SHRF G t^3 (B.B) / 12,   k_r = E t^3 A (B.B) / 192
+
+* viscous (IHQ 1, 2, 3 and others): ``Q = QH sqrt(k m) q`` with m the nodal
+  mass share rho t A / 4 (k_m, k_w) or the nodal rotational inertia share
+  m r^2 (k_r). For a rectangular element (|gamma| = 2) this damps each
+  hourglass mode at the fraction QH of the critical damping of the mode under
+  the reference stiffness, and the explicit viscous stability limit
+  4 QH sqrt(k/m) dt < 2 holds for QH < 0.5 at the shell time step.
+* stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from hollowbody.elements.shell_bt_kinematics import (
+    bt_bmatrix,
+    bt_geometry,
+    bt_hourglass_vector,
+    bt_strain_rates,
+    characteristic_length,
+    dot3,
+)
+from hollowbody.materials.plane_stress_plasticity import (
+    KIND_ELASTIC,
+    P_C,
+    P_CS_C,
+    P_E,
+    P_FAIL,
+    P_G,
+    P_HK,
+    P_KIND,
+    P_NU,
+    P_RATE_CURVE,
+    YIELD_TOL,
+    elastic_plane_stress,
+    plane_stress_return,
+    rate_factor,
+    table_eval,
+)
+
+HG_NONE = -1
+HG_VISCOUS = 0
+HG_STIFFNESS = 1
+
+#: Indices of the kernel control vector ``kp``.
+K_SHRF = 0  # transverse shear factor
+K_HG_KIND = 1  # HG_NONE, HG_VISCOUS or HG_STIFFNESS
+K_QH = 2  # hourglass coefficient
+K_DRILL = 3  # drilling stiffness factor (k = factor * G t A per node)
+K_THICK_UPDATE = 4  # 1: thickness follows the through-thickness strain
+N_CONTROLS = 5
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
+    """Global Voigt (xx yy zz xy yz zx) of a local tensor with s_zz = 0; R = [e1 e2 e3]."""
+    out0 = 0.0
+    out1 = 0.0
+    out2 = 0.0
+    out3 = 0.0
+    out4 = 0.0
+    out5 = 0.0
+    # s_g[p, q] = u_p . S u_q with u_p = (e1[p], e2[p], e3[p])
+    for p in range(3):
+        a0 = e1[p]
+        a1 = e2[p]
+        a2 = e3[p]
+        t0 = sxx * a0 + sxy * a1 + sxz * a2
+        t1 = sxy * a0 + syy * a1 + syz * a2
+        t2 = sxz * a0 + syz * a1
+        q = (p + 1) % 3
+        diag = t0 * a0 + t1 * a1 + t2 * a2
+        off = t0 * e1[q] + t1 * e2[q] + t2 * e3[q]
+        if p == 0:
+            out0 = diag
+            out3 = off
+        elif p == 1:
+            out1 = diag
+            out4 = off
+        else:
+            out2 = diag
+            out5 = off
+    return out0, out1, out2, out3, out4, out5
+
+
+@njit(cache=True, error_model="numpy")
+def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta,
+                   wts, kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte,
+                   die, dhe, stress_out, pmax):
+    """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
+
+    x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
+    conn (e,4) int32; alive (e,) bool (set False here when every point failed);
+    tri (e,) bool triangle flags; thick (e,) mm thickness used (updated when
+    ``update_thickness``); t0 (e,) mm initial thickness; ezz (e,) accumulated
+    thickness log strain; mass_q (e,) kg nodal mass share; r2 (e,) mm^2
+    rotational inertia radius^2; zeta, wts (nip,) rule on [-1, 1]; shrf shear
+    factor; mp packed material parameters; hx, hy hardening table; rx, ry
+    rate curve. State, updated in place: sig (e,nip,3) local in-plane stress
+    GPa; epsp (e,nip); back (e,nip,3) or (1,1,3) when no kinematic hardening;
+    pfail (e,nip) uint8; tau (e,2) GPa transverse shear (xz, yz); hgq (e,5)
+    stiffness-hourglass generalized forces; drill (e,4) kN*mm drilling moments.
+    Outputs: fe (e,4,6) kN, kN*mm forces and moments on the element's nodes;
+    dte (e,) ms critical steps (inf for dead elements); die, dhe (e,) J energy
+    increments; stress_out (e,6) GPa global; pmax (e,) max eps_p over points.
+    """
+    nip = zeta.shape[0]
+    shrf = kp[K_SHRF]
+    hg_kind = int(kp[K_HG_KIND])
+    qh = kp[K_QH]
+    drill_k = kp[K_DRILL]
+    update_thickness = kp[K_THICK_UPDATE] > 0.0
+    kind = int(mp[P_KIND])
+    e_mod = mp[P_E]
+    nu = mp[P_NU]
+    g_mod = mp[P_G]
+    c_wave = mp[P_C]
+    has_back = mp[P_HK] > 0.0
+    rate_on = mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0
+    fail = mp[P_FAIL]
+    hdt = 0.5 * dt
+    for i in range(lo, hi):
+        if not alive[i]:
+            for a in range(4):
+                for j in range(6):
+                    fe[i, a, j] = 0.0
+            dte[i] = np.inf
+            die[i] = 0.0
+            dhe[i] = 0.0
+            continue
+        n0 = conn[i, 0]
+        n1 = conn[i, 1]
+        n2 = conn[i, 2]
+        n3 = conn[i, 3]
+        v0 = (v[n0, 0], v[n0, 1], v[n0, 2])
+        v1 = (v[n1, 0], v[n1, 1], v[n1, 2])
+        v2 = (v[n2, 0], v[n2, 1], v[n2, 2])
+        v3 = (v[n3, 0], v[n3, 1], v[n3, 2])
+        w0 = (w[n0, 0], w[n0, 1], w[n0, 2])
+        w1 = (w[n1, 0], w[n1, 1], w[n1, 2])
+        w2 = (w[n2, 0], w[n2, 1], w[n2, 2])
+        w3 = (w[n3, 0], w[n3, 1], w[n3, 2])
+        # -- half-step geometry and strain rates
+        e1h, e2h, e3h, xlh, ylh, zlh, ah = bt_geometry(
+            (x[n0, 0] - hdt * v0[0], x[n0, 1] - hdt * v0[1], x[n0, 2] - hdt * v0[2]),
+            (x[n1, 0] - hdt * v1[0], x[n1, 1] - hdt * v1[1], x[n1, 2] - hdt * v1[2]),
+            (x[n2, 0] - hdt * v2[0], x[n2, 1] - hdt * v2[1], x[n2, 2] - hdt * v2[2]),
+            (x[n3, 0] - hdt * v3[0], x[n3, 1] - hdt * v3[1], x[n3, 2] - hdt * v3[2]))
+        b1h, b2h = bt_bmatrix(xlh, ylh, ah)
+        vx = (dot3(v0, e1h), dot3(v1, e1h), dot3(v2, e1h), dot3(v3, e1h))
+        vy = (dot3(v0, e2h), dot3(v1, e2h), dot3(v2, e2h), dot3(v3, e2h))
+        vz = (dot3(v0, e3h), dot3(v1, e3h), dot3(v2, e3h), dot3(v3, e3h))
+        tx = (dot3(w0, e1h), dot3(w1, e1h), dot3(w2, e1h), dot3(w3, e1h))
+        ty = (dot3(w0, e2h), dot3(w1, e2h), dot3(w2, e2h), dot3(w3, e2h))
+        dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz = bt_strain_rates(b1h, b2h, vx, vy, vz, tx, ty)
+        # -- through-thickness integration
+        t = thick[i]
+        h2 = 0.5 * t
+        nxx = 0.0
+        nyy = 0.0
+        nxy = 0.0
+        mxx = 0.0
+        myy = 0.0
+        mxy = 0.0
+        work = 0.0
+        dzz = 0.0
+        pm = 0.0
+        nfail = 0
+        for k in range(nip):
+            z = zeta[k] * h2
+            wk = wts[k] * h2
+            exx = (dxx + z * kxx) * dt
+            eyy = (dyy + z * kyy) * dt
+            exy = (gxy + z * kxy) * dt
+            s0 = sig[i, k, 0]
+            s1 = sig[i, k, 1]
+            s2 = sig[i, k, 2]
+            dsp = 0.0
+            if kind == KIND_ELASTIC:
+                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+            elif pfail[i, k] != 0:
+                q0 = 0.0
+                q1 = 0.0
+                q2 = 0.0
+                nfail += 1
+            else:
+                rf = 1.0
+                if rate_on and dt > 0.0:
+                    rf = rate_factor(mp, rx, ry, exx / dt, eyy / dt, exy / dt)
+                a0 = 0.0
+                a1 = 0.0
+                a2 = 0.0
+                if has_back:
+                    a0 = back[i, k, 0]
+                    a1 = back[i, k, 1]
+                    a2 = back[i, k, 2]
+                epn = epsp[i, k]
+                # elastic trial and yield check here; the return mapping only when needed
+                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+                x0 = q0 - a0
+                x1 = q1 - a1
+                x2 = q2 - a2
+                sy, _ = table_eval(epn, hx, hy)
+                sy *= rf
+                if x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * x2 * x2 > sy * sy * (1.0 + YIELD_TOL):
+                    q0, q1, q2, a0, a1, a2, epn, dsp = plane_stress_return(
+                        s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, mp[P_HK], hx,
+                        hy, rf)
+                if has_back:
+                    back[i, k, 0] = a0
+                    back[i, k, 1] = a1
+                    back[i, k, 2] = a2
+                epsp[i, k] = epn
+                pm = max(pm, epn)
+                if fail > 0.0 and epn >= fail:
+                    pfail[i, k] = 1
+                    nfail += 1
+            sig[i, k, 0] = q0
+            sig[i, k, 1] = q1
+            sig[i, k, 2] = q2
+            work += wk * 0.5 * ((s0 + q0) * exx + (s1 + q1) * eyy + (s2 + q2) * exy)
+            dzz += wk * (-(nu / e_mod) * ((q0 + q1) - (s0 + s1)) - dsp)
+            nxx += wk * q0
+            nyy += wk * q1
+            nxy += wk * q2
+            mxx += wk * z * q0
+            myy += wk * z * q1
+            mxy += wk * z * q2
+        # transverse shear: elastic, uniform through the thickness, SHRF on the resultant
+        to0 = tau[i, 0]
+        to1 = tau[i, 1]
+        tn0 = to0 + g_mod * gxz * dt
+        tn1 = to1 + g_mod * gyz * dt
+        if nfail == nip and nip > 0:
+            tn0 = 0.0
+            tn1 = 0.0
+        tau[i, 0] = tn0
+        tau[i, 1] = tn1
+        qxz = shrf * t * tn0
+        qyz = shrf * t * tn1
+        work += shrf * t * 0.5 * ((to0 + tn0) * gxz + (to1 + tn1) * gyz) * dt
+        die[i] = ah * work
+        ezz[i] += dzz / t
+        if update_thickness:
+            thick[i] = t0[i] * math.exp(ezz[i])
+        pmax[i] = pm
+        if nfail == nip and nip > 0:  # every point failed: delete the element
+            alive[i] = False
+            for a in range(4):
+                for j in range(6):
+                    fe[i, a, j] = 0.0
+            dte[i] = np.inf
+            dhe[i] = 0.0
+            for j in range(6):
+                stress_out[i, j] = 0.0
+            continue
+        # -- hourglass (half-step geometry and frame)
+        gam = bt_hourglass_vector(xlh, ylh, b1h, b2h)
+        # warped elements: remove the in-plane velocity of a rigid rotation about e1, e2
+        # (omega_x = B2.vz, omega_y = -B1.vz) from the membrane hourglass rates
+        zh = gam[0] * zlh[0] + gam[1] * zlh[1] + gam[2] * zlh[2] + gam[3] * zlh[3]
+        wzx = b1h[0] * vz[0] + b1h[1] * vz[1] + b1h[2] * vz[2] + b1h[3] * vz[3]
+        wzy = b2h[0] * vz[0] + b2h[1] * vz[1] + b2h[2] * vz[2] + b2h[3] * vz[3]
+        qmx = gam[0] * vx[0] + gam[1] * vx[1] + gam[2] * vx[2] + gam[3] * vx[3] + zh * wzx
+        qmy = gam[0] * vy[0] + gam[1] * vy[1] + gam[2] * vy[2] + gam[3] * vy[3] + zh * wzy
+        qw = gam[0] * vz[0] + gam[1] * vz[1] + gam[2] * vz[2] + gam[3] * vz[3]
+        qtx = gam[0] * tx[0] + gam[1] * tx[1] + gam[2] * tx[2] + gam[3] * tx[3]
+        qty = gam[0] * ty[0] + gam[1] * ty[1] + gam[2] * ty[2] + gam[3] * ty[3]
+        bb = 0.0
+        for a in range(4):
+            bb += b1h[a] * b1h[a] + b2h[a] * b2h[a]
+        t3 = t * t * t
+        km = e_mod * t * ah * bb * 0.125
+        kw = shrf * g_mod * t3 * bb / 12.0
+        kr = e_mod * t3 * ah * bb / 192.0
+        hmx = 0.0
+        hmy = 0.0
+        hw = 0.0
+        htx = 0.0
+        hty = 0.0
+        if hg_kind == HG_VISCOUS:
+            mq = mass_q[i]
+            cm = qh * math.sqrt(km * mq)
+            cw = qh * math.sqrt(kw * mq)
+            cr = qh * math.sqrt(kr * mq * r2[i])
+            hmx = cm * qmx
+            hmy = cm * qmy
+            hw = cw * qw
+            htx = cr * qtx
+            hty = cr * qty
+            dhe[i] = dt * (hmx * qmx + hmy * qmy + hw * qw + htx * qtx + hty * qty)
+        elif hg_kind == HG_STIFFNESS:
+            o0 = hgq[i, 0]
+            o1 = hgq[i, 1]
+            o2 = hgq[i, 2]
+            o3 = hgq[i, 3]
+            o4 = hgq[i, 4]
+            hmx = o0 + qh * km * qmx * dt
+            hmy = o1 + qh * km * qmy * dt
+            hw = o2 + qh * kw * qw * dt
+            htx = o3 + qh * kr * qtx * dt
+            hty = o4 + qh * kr * qty * dt
+            hgq[i, 0] = hmx
+            hgq[i, 1] = hmy
+            hgq[i, 2] = hw
+            hgq[i, 3] = htx
+            hgq[i, 4] = hty
+            dhe[i] = 0.5 * dt * ((o0 + hmx) * qmx + (o1 + hmy) * qmy + (o2 + hw) * qw
+                                 + (o3 + htx) * qtx + (o4 + hty) * qty)
+        else:
+            dhe[i] = 0.0
+        # -- drilling stabilization: nodal spin about e3 tied to the element's in-plane spin
+        dr0 = 0.0
+        dr1 = 0.0
+        dr2 = 0.0
+        dr3 = 0.0
+        sdr = 0.0
+        if drill_k > 0.0:
+            omz = 0.5 * (b1h[0] * vy[0] + b1h[1] * vy[1] + b1h[2] * vy[2] + b1h[3] * vy[3]
+                         - b2h[0] * vx[0] - b2h[1] * vx[1] - b2h[2] * vx[2] - b2h[3] * vx[3])
+            kd = drill_k * g_mod * t * ah * dt
+            r0 = dot3(w0, e3h) - omz
+            r1 = dot3(w1, e3h) - omz
+            r2_ = dot3(w2, e3h) - omz
+            r3 = dot3(w3, e3h) - omz
+            o0 = drill[i, 0]
+            o1 = drill[i, 1]
+            o2 = drill[i, 2]
+            o3 = drill[i, 3]
+            dr0 = o0 + kd * r0
+            dr1 = o1 + kd * r1
+            dr2 = o2 + kd * r2_
+            dr3 = o3 + kd * r3
+            drill[i, 0] = dr0
+            drill[i, 1] = dr1
+            drill[i, 2] = dr2
+            drill[i, 3] = dr3
+            dhe[i] += 0.5 * dt * ((o0 + dr0) * r0 + (o1 + dr1) * r1 + (o2 + dr2) * r2_
+                                  + (o3 + dr3) * r3)
+            sdr = 0.5 * (dr0 + dr1 + dr2 + dr3)
+        drl = (dr0, dr1, dr2, dr3)
+        # -- forces with the geometry at t^{n+1}
+        e1, e2, e3, xl, yl, _, a = bt_geometry(
+            (x[n0, 0], x[n0, 1], x[n0, 2]), (x[n1, 0], x[n1, 1], x[n1, 2]),
+            (x[n2, 0], x[n2, 1], x[n2, 2]), (x[n3, 0], x[n3, 1], x[n3, 2]))
+        b1, b2 = bt_bmatrix(xl, yl, a)
+        for j in range(4):
+            fx = a * (b1[j] * nxx + b2[j] * nxy)
+            fy = a * (b2[j] * nyy + b1[j] * nxy)
+            fz = a * (b1[j] * qxz + b2[j] * qyz)
+            mx = a * (-b2[j] * myy - b1[j] * mxy - 0.25 * qyz)
+            my = a * (b1[j] * mxx + b2[j] * mxy + 0.25 * qxz)
+            gj = gam[j]
+            gx = gj * hmx
+            gy = gj * hmy
+            gz = gj * hw
+            gmx = gj * htx
+            gmy = gj * hty
+            gx += sdr * b2h[j]
+            gy -= sdr * b1h[j]
+            gz += zh * (b1h[j] * hmx + b2h[j] * hmy)
+            gmz = drl[j]
+            for c in range(3):
+                fe[i, j, c] = -(fx * e1[c] + fy * e2[c] + fz * e3[c]
+                                + gx * e1h[c] + gy * e2h[c] + gz * e3h[c])
+                fe[i, j, 3 + c] = -(mx * e1[c] + my * e2[c] + gmx * e1h[c] + gmy * e2h[c]
+                                    + gmz * e3h[c])
+        dte[i] = characteristic_length(xl, yl, a, tri[i]) / c_wave
+        it = 1.0 / t
+        s6 = _rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
+        for j in range(6):
+            stress_out[i, j] = s6[j]
+
+
+#: Elements per parallel chunk; groups smaller than PARALLEL_MIN run serially
+#: (thread start-up costs more than it saves on a few hundred shells).
+CHUNK = 64
+PARALLEL_MIN = 2048
+
+
+@njit(cache=True, parallel=True)
+def _bt_shell_parallel(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts,
+                       kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe,
+                       dte, die, dhe, stress_out, pmax):
+    ne = conn.shape[0]
+    nchunk = (ne + CHUNK - 1) // CHUNK
+    for c in prange(nchunk):
+        bt_shell_range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, conn, alive, tri,
+                       thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx, hy, rx, ry, sig,
+                       epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out, pmax)
+
+
+def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp,
+                    mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die,
+                    dhe, stress_out, pmax) -> None:
+    """Every element of a group (arguments as :func:`bt_shell_range`): chunks over
+    threads for large groups, one serial call for small ones."""
+    args = (x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx,
+            hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out,
+            pmax)
+    if conn.shape[0] >= PARALLEL_MIN:
+        _bt_shell_parallel(*args)
+    else:
+        bt_shell_range(0, conn.shape[0], *args)
+
+
+@njit(cache=True)
+def _gather_range(lo, hi, fe, nodes, ptr, ref, f, moment, with_moment):
+    for j in range(lo, hi):
+        n = nodes[j]
+        s0 = 0.0
+        s1 = 0.0
+        s2 = 0.0
+        s3 = 0.0
+        s4 = 0.0
+        s5 = 0.0
+        for p in range(ptr[j], ptr[j + 1]):
+            r = ref[p]
+            e = r // 4
+            c = r - 4 * e
+            s0 += fe[e, c, 0]
+            s1 += fe[e, c, 1]
+            s2 += fe[e, c, 2]
+            s3 += fe[e, c, 3]
+            s4 += fe[e, c, 4]
+            s5 += fe[e, c, 5]
+        f[n, 0] += s0
+        f[n, 1] += s1
+        f[n, 2] += s2
+        if with_moment:
+            moment[n, 0] += s3
+            moment[n, 1] += s4
+            moment[n, 2] += s5
+
+
+@njit(cache=True, parallel=True)
+def _gather_parallel(fe, nodes, ptr, ref, f, moment, with_moment):
+    k = nodes.shape[0]
+    nchunk = (k + 4 * CHUNK - 1) // (4 * CHUNK)
+    for c in prange(nchunk):
+        _gather_range(c * 4 * CHUNK, min(k, (c + 1) * 4 * CHUNK), fe, nodes, ptr, ref, f,
+                      moment, with_moment)
+
+
+def gather_node_forces(fe: np.ndarray, nodes: np.ndarray, ptr: np.ndarray, ref: np.ndarray,
+                       f: np.ndarray, moment: np.ndarray, with_moment: bool) -> None:
+    """Add element forces into nodal arrays, one node per thread (no races).
+
+    fe (e,4,6); nodes (k,) int64 node indices used by the group; ptr (k+1,)
+    int64 CSR offsets into ref (m,) int64 entries ``4 * element + corner``.
+    f (n,3) kN += forces; moment (n,3) kN*mm += moments when ``with_moment``.
+    """
+    if nodes.shape[0] >= PARALLEL_MIN:
+        _gather_parallel(fe, nodes, ptr, ref, f, moment, with_moment)
+    else:
+        _gather_range(0, nodes.shape[0], fe, nodes, ptr, ref, f, moment, with_moment)
+
+
+def node_gather_map(conn: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CSR map node -> element corners of ``conn`` (e, 4).
+
+    Returns ``(nodes, ptr, ref)``: the sorted distinct node indices (k,) int64,
+    offsets (k+1,) int64 and entries (4e,) int64 ``4 * element + corner``.
+    A triangle's repeated node appears twice (both corners add).
+    """
+    flat = conn.reshape(-1).astype(np.int64)
+    order = np.argsort(flat, kind="stable")
+    nodes, counts = np.unique(flat[order], return_counts=True)
+    ptr = np.zeros(nodes.size + 1, dtype=np.int64)
+    np.cumsum(counts, out=ptr[1:])
+    return nodes.astype(np.int64), ptr, order.astype(np.int64)

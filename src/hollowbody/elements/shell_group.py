@@ -1,0 +1,248 @@
+"""Runtime of one group of Belytschko-Lin-Tsay shells (one part, one material, one section).
+
+The time loop calls :meth:`ShellGroupRuntime.add_forces` once per cycle with
+the positions at t^{n+1}, the velocities and angular velocities at t^{n+1/2};
+the runtime updates its stresses and adds nodal forces and moments. See
+:mod:`hollowbody.elements.shell_bt_forces` for the element and
+``docs/shells.md`` for the formulation, its options and its limits.
+
+Section (``SectionDef.params``): NIP (0/missing = 2), QR (0 Gauss, -1 Lobatto,
+1 trapezoidal), SHRF (0/missing = 5/6); the thickness comes from the
+``ShellGroup`` (mean of the 4 nodal thicknesses). ELFORM 2 (and 0) is the
+Belytschko-Tsay shell; any other ELFORM runs as Belytschko-Tsay too and is
+reported in :attr:`ShellGroupRuntime.warnings`.
+
+Rotational inertia (LS-DYNA style scaling so rotations never govern the time
+step): every distinct node of an element gets ``m_e / n_nodes * max(t^2/12,
+A/8)`` (m_e = rho A t). With A/8 the rotational frequencies of the
+bending and transverse-shear modes stay below the membrane ones (see
+docs/shells.md), and for thick elements (t^2 > 1.5 A) the physical rotary
+inertia t^2/12 is used.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.elements.shell_bt_forces import (
+    HG_NONE,
+    HG_STIFFNESS,
+    HG_VISCOUS,
+    K_DRILL,
+    K_HG_KIND,
+    K_QH,
+    K_SHRF,
+    K_THICK_UPDATE,
+    N_CONTROLS,
+    bt_shell_forces,
+    gather_node_forces,
+    node_gather_map,
+)
+from hollowbody.elements.shell_thickness_rules import through_thickness_rule
+from hollowbody.errors import DeckError
+from hollowbody.materials.plane_stress_material import PlaneStressMaterial, shell_material
+from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SectionDef, ShellGroup
+
+DEFAULT_SHRF = 5.0 / 6.0
+#: Drilling stiffness factor: k = factor * G t A per node (see docs/shells.md).
+DEFAULT_DRILLING = 0.1
+SUPPORTED_ELFORM = (0, 2)
+
+
+def _quad_geometry(conn: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Areas (e,) mm^2 (half the diagonal cross product) and triangle flags (e,) bool."""
+    xe = x[conn]
+    n = np.cross(xe[:, 2] - xe[:, 0], xe[:, 3] - xe[:, 1])
+    return 0.5 * np.linalg.norm(n, axis=1), conn[:, 2] == conn[:, 3]
+
+
+class ShellGroupRuntime:
+    """Belytschko-Lin-Tsay shells of one part.
+
+    Attributes (e = number of elements): pid; elem_ids (e,) int64; conn (e,4)
+    int32; n_elem; alive (e,) bool; thickness (e,) mm used by the element
+    (constant unless ``thickness_update``); thickness_strain (e,) through-
+    thickness log strain (tracked always); stress (e,6) GPa global Voigt
+    membrane stress (mean over the thickness) with the transverse shears;
+    plastic_strain (e,) max effective plastic strain over the points;
+    internal_energy, hourglass_energy: J cumulative; mass (e,) kg;
+    warnings: list of str about substitutions made; failed: list of element
+    indices deleted by material failure (in order).
+    """
+
+    rotational = True
+
+    def __init__(self, group: ShellGroup, material: MaterialDef, section: SectionDef,
+                 hourglass: HourglassDef, curves: dict[int, Curve], node_x0: np.ndarray,
+                 *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING) -> None:
+        self.pid = int(group.pid)
+        self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
+        self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)
+        self.n_elem = int(self.conn.shape[0])
+        self.warnings: list[str] = []
+        self.failed: list[int] = []
+        e = self.n_elem
+        src = section.source
+        self.material: PlaneStressMaterial = shell_material(material, curves)
+        elform = int(section.elform)
+        if elform not in SUPPORTED_ELFORM:
+            self.warnings.append(f"part {self.pid}: shell ELFORM {elform} runs as "
+                                 "Belytschko-Tsay (ELFORM 2)")
+        p = section.params
+        try:
+            self.zeta, self.weights = through_thickness_rule(float(p.get("NIP", 0.0) or 0.0),
+                                                             float(p.get("QR", 0.0) or 0.0))
+        except ValueError as err:
+            raise DeckError(f"section {section.secid}: {err}", src.file, src.line,
+                            "SECTION_SHELL") from None
+        self.nip = int(self.zeta.size)
+        shrf = float(p.get("SHRF", 0.0) or 0.0)
+        self.shrf = shrf if shrf > 0.0 else DEFAULT_SHRF
+        t0 = np.asarray(group.thickness, dtype=np.float64).mean(axis=1)
+        if e and not np.all(t0 > 0.0):
+            bad = int(self.elem_ids[np.nonzero(~(t0 > 0.0))[0][0]])
+            raise DeckError(f"part {self.pid}: shell element {bad} has thickness <= 0",
+                            src.file, src.line, "SECTION_SHELL")
+        self.t0 = np.ascontiguousarray(t0)
+        self.thickness = self.t0.copy()
+        self.thickness_strain = np.zeros(e)
+        self.thickness_update = bool(thickness_update)
+        x0 = np.asarray(node_x0, dtype=np.float64)
+        area, self.triangle = _quad_geometry(self.conn, x0)
+        self.area0 = area
+        rho = self.material.density
+        self.mass = rho * area * self.t0
+        self.mass_q = 0.25 * self.mass
+        self.r2 = np.maximum(self.t0 ** 2 / 12.0, area / 4.0)
+        ihq = int(hourglass.ihq)
+        self.qh = float(hourglass.qm)
+        if self.qh <= 0.0:
+            self.hg_kind = HG_NONE
+        elif ihq in (4, 5):
+            self.hg_kind = HG_STIFFNESS
+        else:
+            self.hg_kind = HG_VISCOUS
+            if ihq not in (0, 1, 2, 3):
+                self.warnings.append(f"part {self.pid}: hourglass IHQ {ihq} runs as the "
+                                     "Belytschko-Tsay viscous form for shells")
+        self.params = self.material.params()
+        self.hard_x = np.ascontiguousarray(self.material.hard_x, dtype=np.float64)
+        self.hard_y = np.ascontiguousarray(self.material.hard_y, dtype=np.float64)
+        self.rate_x = np.ascontiguousarray(self.material.rate_x, dtype=np.float64)
+        self.rate_y = np.ascontiguousarray(self.material.rate_y, dtype=np.float64)
+        # state
+        self.alive = np.ones(e, dtype=bool)
+        self.sig = np.zeros((e, self.nip, 3))
+        self.epsp = np.zeros((e, self.nip))
+        self.back = np.zeros((e, self.nip, 3)) if self.material.hk > 0.0 else np.zeros((1, 1, 3))
+        self.pfail = np.zeros((e, self.nip), dtype=np.uint8)
+        self.tau = np.zeros((e, 2))
+        self.hgq = np.zeros((e, 5))
+        self.drill = np.zeros((e, 4))
+        self.drilling = float(drilling)
+        self.stress = np.zeros((e, 6))
+        self.plastic_strain = np.zeros(e)
+        self.internal_energy = 0.0
+        self.hourglass_energy = 0.0
+        # work arrays, allocated once
+        self._fe = np.zeros((e, 4, 6))
+        self._dte = np.full(e, np.inf)
+        self._die = np.zeros(e)
+        self._dhe = np.zeros(e)
+        self._nodes, self._ptr, self._ref = node_gather_map(self.conn)
+        self._controls = np.zeros(N_CONTROLS)
+        self._controls[K_SHRF] = self.shrf
+        self._controls[K_HG_KIND] = self.hg_kind
+        self._controls[K_QH] = self.qh
+        self._controls[K_DRILL] = self.drilling
+        self._controls[K_THICK_UPDATE] = 1.0 if self.thickness_update else 0.0
+        self._wzero = np.zeros((0, 3))
+        self._mzero = np.zeros((1, 3))
+
+    # -- set-up helpers -----------------------------------------------------------
+    def lumped_rotational_inertia(self, n_nodes: int) -> np.ndarray:
+        """(n,) kg*mm^2 nodal rotational inertia of this group.
+
+        Each distinct node of an element gets ``m_e / k * max(t^2/12, A/8)``
+        (k = 4 for quadrilaterals, 3 for triangles), so rotations never govern
+        the time step (see the module docstring).
+        """
+        out = np.zeros(n_nodes)
+        s = np.sort(self.conn, axis=1)
+        first = np.ones_like(s, dtype=bool)
+        first[:, 1:] = s[:, 1:] != s[:, :-1]
+        share = self.mass * self.r2 / first.sum(axis=1)
+        np.add.at(out, s[first], np.broadcast_to(share[:, None], s.shape)[first])
+        return out
+
+    def lumped_mass(self, n_nodes: int) -> np.ndarray:
+        """(n,) kg nodal masses of this group (element mass shared by its distinct nodes)."""
+        out = np.zeros(n_nodes)
+        s = np.sort(self.conn, axis=1)
+        first = np.ones_like(s, dtype=bool)
+        first[:, 1:] = s[:, 1:] != s[:, :-1]
+        share = self.mass / first.sum(axis=1)
+        np.add.at(out, s[first], np.broadcast_to(share[:, None], s.shape)[first])
+        return out
+
+    # -- the cycle ---------------------------------------------------------------
+    def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float, f: np.ndarray,
+                   w: np.ndarray | None = None, moment: np.ndarray | None = None
+                   ) -> tuple[float, int, int]:
+        """Update stresses and add nodal forces (and moments) of the group.
+
+        x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}
+        (w None: no rotations); dt ms (0 allowed). Adds forces on the nodes
+        (kN) into f (n,3) and moments (kN*mm) into moment (n,3) when given.
+        Returns ``(dt_crit ms, index in group, -1)``: the smallest unscaled
+        critical step over live elements and its element (inf, -1 when none).
+        """
+        if w is None:
+            if self._wzero.shape[0] != v.shape[0]:
+                self._wzero = np.zeros_like(v)
+            w = self._wzero
+        with_moment = moment is not None
+        mom = moment if with_moment else self._mzero
+        n_alive_before = int(self.alive.sum()) if self.material.fail > 0.0 else 0
+        bt_shell_forces(x, v, w, float(dt), self.conn, self.alive, self.triangle,
+                        self.thickness, self.t0, self.thickness_strain, self.mass_q, self.r2,
+                        self.zeta, self.weights, self._controls, self.params, self.hard_x,
+                        self.hard_y, self.rate_x, self.rate_y, self.sig, self.epsp, self.back,
+                        self.pfail, self.tau, self.hgq, self.drill, self._fe, self._dte,
+                        self._die, self._dhe, self.stress, self.plastic_strain)
+        gather_node_forces(self._fe, self._nodes, self._ptr, self._ref, f, mom, with_moment)
+        self.internal_energy += float(self._die.sum())
+        self.hourglass_energy += float(self._dhe.sum())
+        if n_alive_before and int(self.alive.sum()) < n_alive_before:
+            self._record_failures()
+        if self.n_elem == 0:
+            return np.inf, -1, -1
+        i = int(np.argmin(self._dte))
+        d = float(self._dte[i])
+        if not np.isfinite(d):
+            return np.inf, -1, -1
+        return d, i, -1
+
+    def _record_failures(self) -> None:
+        known = set(self.failed)
+        for i in np.nonzero(~self.alive & (self.pfail.min(axis=1) > 0))[0]:
+            if int(i) not in known:
+                self.failed.append(int(i))
+
+    def erode(self, idx: np.ndarray) -> None:
+        """Delete elements ``idx`` (indices in the group): no more forces, stress or step."""
+        idx = np.asarray(idx, dtype=np.int64)
+        self.alive[idx] = False
+        self.stress[idx] = 0.0
+        self._fe[idx] = 0.0
+        self._dte[idx] = np.inf
+
+    # -- output helpers ------------------------------------------------------------
+    def point_stress(self) -> np.ndarray:
+        """(e, nip, 3) GPa local in-plane stress (xx, yy, xy) at the integration points."""
+        return self.sig.copy()
+
+    @property
+    def point_plastic_strain(self) -> np.ndarray:
+        """(e, nip) effective plastic strain at the integration points."""
+        return self.epsp

@@ -1,0 +1,184 @@
+"""Runtime state and kernels of one solid element group (one part).
+
+:class:`SolidGroupRuntime` is what the solver calls every cycle: it owns the
+time-varying arrays of the group (stress, volume, hourglass and material
+history, energies) and the work arrays of its kernels (allocated once).
+Formulation: 8-node one-point hexahedron (ELFORM 1) with Flanagan-Belytschko
+hourglass control and LS-DYNA bulk viscosity; degenerate wedges and
+tetrahedra run through the same kernel (see docs/elements.md).
+Materials: *MAT_ELASTIC (``kind == "elastic"``) and *MAT_SIMPLIFIED_RUBBER
+(``kind == "rubber181"``).
+
+Energies (J, cumulative): ``internal_energy + hourglass_energy`` is the work
+of the group's nodal forces, accounted exactly as the central-difference
+scheme does it (``-dt v^{n+1/2} . (f^n + f^{n+1}) / 2``), so the solver's energy
+balance closes. ``hourglass_energy`` is the hourglass forces' share
+(dissipated in the viscous form, stored + dissipated in the stiffness form);
+``internal_energy`` the rest: stress work *including* the bulk-viscosity work
+and MAT_181's damping work.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numba
+import numpy as np
+
+from hollowbody.elements.assembly import NodeGather, scatter_add
+from hollowbody.elements.hex8_kinematics import (
+    SHAPE_TET,
+    canonical_connectivity,
+    hex8_gradients,
+)
+from hollowbody.elements.hex8_solid_kernels import hex8_elastic_kernel, hex8_rubber_kernel
+from hollowbody.elements.time_step import element_time_steps
+from hollowbody.errors import DeckError
+from hollowbody.materials import mat001_elastic as m001
+from hollowbody.materials import mat181_simplified_rubber as m181
+from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
+
+#: Elements per chunk of the parallel element loop.
+CHUNK = 256
+#: Groups at least this large use the parallel node gather (when > 1 thread).
+GATHER_MIN_ELEMENTS = 2048
+
+
+def _chunk_bounds(n: int, chunk: int = CHUNK) -> np.ndarray:
+    nchunk = max(1, -(-n // chunk))
+    return np.linspace(0, n, nchunk + 1).round().astype(np.int64)
+
+
+class SolidGroupRuntime:
+    """Runtime state + kernels of one SolidGroup (one part: one material, one hourglass def).
+
+    Attributes (e = number of elements):
+    pid; elem_ids (e,) int64; conn (e, 8) int32 as in the deck; n_elem;
+    shape (e,) int8 (hex8_kinematics.SHAPE_*); alive (e,) bool (False = eroded);
+    stress (e, 6) float64 GPa Cauchy, Voigt xx yy zz xy yz zx (without the
+    bulk-viscosity pressure); volume0, volume (e,) mm^3 initial / current;
+    mass (e,) kg = density * volume0; dt_elem (e,) ms critical step of the last
+    call (unscaled, inf for dead elements); internal_energy, hourglass_energy
+    J cumulative (see module docstring).
+    """
+
+    def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
+                 curves: dict[int, Curve], node_x0: np.ndarray) -> None:
+        self.pid = int(group.pid)
+        self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
+        self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)
+        self.n_elem = int(self.conn.shape[0])
+        e = self.n_elem
+        self._conn_k, self.shape = canonical_connectivity(self.conn)
+        x0 = np.ascontiguousarray(node_x0, dtype=np.float64)
+        self._b0, self.volume0 = hex8_gradients(self._conn_k, x0)
+        if e and np.any(self.volume0 <= 0.0):
+            i = int(np.nonzero(self.volume0 <= 0.0)[0][0])
+            raise DeckError(f"solid element {int(self.elem_ids[i])} of part {self.pid} has "
+                            f"zero or negative initial volume ({self.volume0[i]:.4g} mm^3); "
+                            "check its node order", material.source.file, None, "ELEMENT_SOLID")
+        self.volume = self.volume0.copy()
+        self.density = float(material.density)
+        self.mass = self.density * self.volume0
+        self.kind = material.kind
+        self.alive = np.ones(e, dtype=bool)
+        self.stress = np.zeros((e, 6))
+        self.internal_energy = 0.0
+        self.hourglass_energy = 0.0
+        self._lfac = np.where(self.shape == SHAPE_TET, 3.0, 1.0)
+
+        if self.kind == "elastic":
+            self._mp = m001.elastic_params(material)
+            c0 = float(self._mp[m001.P_C])
+            self._table = None
+        elif self.kind == "rubber181":
+            self._mp, self._table = m181.rubber_params(material, curves)
+            c0 = m181.rubber_wave_speed0(self._mp)
+        else:
+            raise DeckError(f"material {material.mid} ({material.keyword or material.kind}) "
+                            "is not available for solid elements", material.source.file,
+                            material.source.line, material.keyword or None)
+        use_fric = (self.kind == "rubber181" and self._mp[m181.P_GF] > 0.0
+                    and self._mp[m181.P_SIGF] > 0.0)
+        self._fric = np.zeros((e if use_fric else 1, 6))
+
+        ihq = int(hourglass.ihq) if hourglass.ihq else 1
+        if ihq > 5:
+            warnings.warn(f"part {self.pid}: hourglass type IHQ={ihq} is not available for "
+                          "solids; the Flanagan-Belytschko stiffness form (IHQ=4) is used "
+                          f"with QM={hourglass.qm}", UserWarning, stacklevel=2)
+            ihq = 4
+        self.ihq = ihq
+        self._hg = np.array([float(ihq), float(hourglass.qm), float(hourglass.q1),
+                             float(hourglass.q2)])
+        self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
+
+        self._fwork = np.zeros((e, 8, 3))
+        self.dt_elem = element_time_steps(self._conn_k, x0, c0, self.shape) if e else \
+            np.zeros(0)
+        self._c = np.full(e, c0)
+        self._bounds = _chunk_bounds(e)
+        self._out = np.zeros((self._bounds.size - 1, 5))
+        self._gather = NodeGather(self._conn_k) if e >= GATHER_MIN_ELEMENTS else None
+
+    # ------------------------------------------------------------------
+    def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float,
+                   f: np.ndarray) -> tuple[float, int, int]:
+        """Advance the group's stress to t^{n+1} and add its nodal forces to f.
+
+        x: (n, 3) float64 mm positions at t^{n+1}; v: (n, 3) float64 mm/ms
+        velocities at t^{n+1/2}; dt: ms, the step just taken (0 at start: no
+        stress increment, no energy); f: (n, 3) float64 kN, receives
+        -(internal + hourglass + bulk viscosity) forces. Arrays must be
+        C-contiguous float64. Returns (dt_crit_min ms unscaled, 0-based index
+        of the element setting it, index of the first element with volume <= 0
+        or -1); (inf, -1, -1) when no element is alive.
+        """
+        if self.n_elem == 0:
+            return np.inf, -1, -1
+        out = self._out
+        if self.kind == "elastic":
+            hex8_elastic_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
+                                self.stress, self.volume, self.volume0, self._hgstate,
+                                self._fwork, self.dt_elem, self._c, self._mp, self._hg,
+                                self._bounds, out)
+        else:
+            tab = self._table
+            hex8_rubber_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
+                               self.stress, self.volume, self.volume0, self._hgstate,
+                               self._fwork, self.dt_elem, self._c, self._b0, self._fric,
+                               self._mp, tab.f, tab.g, self._hg, self._bounds, out)
+        if self._gather is not None and numba.get_num_threads() > 1:
+            self._gather.add(self._fwork, f)
+        else:
+            scatter_add(self._conn_k, self._fwork, f)
+        self.internal_energy += float(out[:, 0].sum())
+        self.hourglass_energy += float(out[:, 1].sum())
+        k = int(np.argmin(out[:, 2]))
+        dtmin = float(out[k, 2])
+        imin = int(out[k, 3]) if np.isfinite(dtmin) else -1
+        negs = out[:, 4]
+        neg = int(negs[negs >= 0].min()) if np.any(negs >= 0) else -1
+        return dtmin, imin, neg
+
+    def erode(self, idx: np.ndarray) -> None:
+        """Mark elements idx (0-based in the group) dead and zero their stress and history."""
+        idx = np.asarray(idx, dtype=np.int64)
+        self.alive[idx] = False
+        self.stress[idx] = 0.0
+        self._hgstate[idx] = 0.0
+        if self._fric.shape[0] == self.n_elem:
+            self._fric[idx] = 0.0
+        self.dt_elem[idx] = np.inf
+
+    def wave_speed(self) -> np.ndarray:
+        """Current dilatational wave speed (e,) mm/ms (initial value before the first call)."""
+        return self._c.copy()
+
+    def pressure(self) -> np.ndarray:
+        """Pressure (e,) GPa, -tr(stress)/3 (compression positive, no bulk viscosity)."""
+        return -self.stress[:, :3].sum(axis=1) / 3.0
+
+    def connectivity_used(self) -> np.ndarray:
+        """(e, 8) int32 connectivity of the kernels (tetrahedra rewritten, see hex8_kinematics)."""
+        return self._conn_k

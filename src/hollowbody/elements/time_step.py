@@ -1,0 +1,48 @@
+"""Critical time step of solid elements (LS-DYNA's rule with bulk viscosity).
+
+``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + Q1 l |tr D|`` for
+a compressing element (``tr D < 0``), else ``Q = 0``. ``L_e`` is the
+characteristic length (V / A_max for hexahedra and wedges, the smallest
+altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
+length, ``c`` the material's current dilatational wave speed. The solver
+multiplies the minimum by TSSFAC (0.9). Units: mm, ms, mm/ms.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from hollowbody.elements.hex8_kinematics import characteristic_lengths
+
+
+@njit(cache=True)
+def critical_time_step(length, c, l_visc, trd, q1, q2):
+    """Kernel: dt_crit (ms) of one element.
+
+    length: L_e mm; c: wave speed mm/ms; l_visc: V^(1/3) mm; trd: tr D 1/ms
+    (mid-step); q1, q2: quadratic and linear bulk-viscosity coefficients.
+    """
+    qv = 0.0
+    if trd < 0.0:
+        qv = q2 * c - q1 * l_visc * trd
+    return length / (qv + math.sqrt(qv * qv + c * c))
+
+
+def element_time_steps(conn: np.ndarray, x: np.ndarray, c: np.ndarray | float,
+                       shape: np.ndarray | None = None) -> np.ndarray:
+    """Critical time steps (e,) ms of elements at rest (tr D = 0, so Q = 0).
+
+    conn: (e, 8) int node indices (canonical, see
+    :func:`hollowbody.elements.hex8_kinematics.canonical_connectivity`);
+    x: (n, 3) mm; c: wave speed (scalar or (e,)) mm/ms; shape: optional (e,)
+    shape codes (tetrahedra use the smallest altitude). Returns L_e / c
+    (inf where the element has zero size or c = 0).
+    """
+    length = characteristic_lengths(conn, x, shape)
+    c = np.broadcast_to(np.asarray(c, dtype=np.float64), length.shape)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dt = np.where(c > 0.0, np.abs(length) / c, np.inf)
+    return dt

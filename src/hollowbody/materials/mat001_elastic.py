@@ -1,0 +1,77 @@
+"""*MAT_ELASTIC (LS-DYNA 001): isotropic hypoelastic solid.
+
+Objective stress rate with the Hughes-Winget incremental rotation ``Q``
+(second-order accurate Jaumann rate, exactly orthogonal)::
+
+    sigma^{n+1} = Q sigma^n Q^T + lambda tr(de) I + 2 mu de,   de = dt D_mid
+
+Wave speed ``c = sqrt((K + 4G/3) / rho)``. Units: GPa, kg/mm^3, mm/ms.
+Parameters are packed into a float64 vector (indices ``P_*``) so the element
+kernels take plain arrays.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from hollowbody.errors import DeckError
+from hollowbody.model.model import MaterialDef
+
+P_LAMBDA, P_MU, P_BULK, P_RHO, P_C = range(5)
+N_PARAMS = 5
+
+
+def elastic_params(mat: MaterialDef) -> np.ndarray:
+    """Packed parameters (N_PARAMS,) float64 of a *MAT_ELASTIC definition.
+
+    Raises DeckError for E <= 0, PR outside (-1, 0.5) or density <= 0.
+    """
+    e_mod = float(mat.params.get("E", 0.0))
+    nu = float(mat.params.get("PR", 0.0))
+    rho = float(mat.density)
+    where = (mat.source.file, mat.source.line, mat.keyword or "MAT_ELASTIC")
+    if e_mod <= 0.0:
+        raise DeckError(f"material {mat.mid}: E must be > 0 (got {e_mod})", *where)
+    if not -1.0 < nu < 0.5:
+        raise DeckError(f"material {mat.mid}: PR must be in (-1, 0.5) (got {nu})", *where)
+    if rho <= 0.0:
+        raise DeckError(f"material {mat.mid}: density must be > 0 (got {rho})", *where)
+    mu = e_mod / (2.0 * (1.0 + nu))
+    lam = e_mod * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
+    bulk = e_mod / (3.0 * (1.0 - 2.0 * nu))
+    p = np.zeros(N_PARAMS)
+    p[P_LAMBDA] = lam
+    p[P_MU] = mu
+    p[P_BULK] = bulk
+    p[P_RHO] = rho
+    p[P_C] = math.sqrt((bulk + 4.0 * mu / 3.0) / rho)
+    return p
+
+
+@njit(cache=True)
+def elastic_update(s0, s1, s2, s3, s4, s5, d0, d1, d2, d3, d4, d5, lam, mu):
+    """Kernel: new stress from the rotated old stress and the strain increment.
+
+    s*: rotated old Cauchy stress (GPa, Voigt xx yy zz xy yz zx); d*: strain
+    increment dt*D (tensor components, i.e. d3 = dt*D_xy); lam, mu: Lame
+    constants (GPa). Returns the six new stress components.
+    """
+    tr = lam * (d0 + d1 + d2)
+    m2 = 2.0 * mu
+    return (s0 + tr + m2 * d0, s1 + tr + m2 * d1, s2 + tr + m2 * d2,
+            s3 + m2 * d3, s4 + m2 * d4, s5 + m2 * d5)
+
+
+def elastic_stress_update(stress: np.ndarray, de: np.ndarray, params: np.ndarray) -> np.ndarray:
+    """Vectorised small-increment update (no rotation), for tests and tools.
+
+    stress: (e, 6) GPa; de: (e, 6) strain increments (tensor shear
+    components); params: packed parameters. Returns the new (e, 6) stress.
+    """
+    lam, mu = params[P_LAMBDA], params[P_MU]
+    out = stress + 2.0 * mu * de
+    out[:, :3] += lam * de[:, :3].sum(axis=1, keepdims=True)
+    return out

@@ -1,0 +1,183 @@
+"""*MAT_SIMPLIFIED_RUBBER/FOAM (LS-DYNA 181), rubber branch (Kolling et al. 2007).
+
+Hyperelastic, total form from the element's deformation gradient ``F``
+(from the reference uniform gradients, ``F = sum_a x_a (x) B0_a``)::
+
+    b = F F^T,  eigen-pairs (mu_i, n_i) of b   (Jacobi, no LAPACK)
+    ln l_i = (1/2) (ln mu_i - (1/3) sum_j ln mu_j)      isochoric stretches
+    tau_i = f(l_i) - (1/3) sum_j f(l_j)                 f from rubber_table
+    sigma = (1/J) sum_i tau_i n_i (x) n_i + KM (J - 1) I + 2 eta D' + s_f
+
+with ``J = V / V0`` (element volume ratio, consistent with the volume the
+solver checks), ``D'`` the deviatoric mid-step rate of deformation.
+
+Viscous damping (MU): ``eta = MU rho c_s l``, ``c_s = sqrt(G0 / rho)`` the
+shear wave speed, ``l = V^(1/3)``. Then MU is the fraction of critical damping
+of the element's highest shear mode (``omega ~ 2 c_s / l``), which matches the
+keyword manual's description of MU as a dimensionless damping coefficient
+(recommended 0.05..0.5, default 0.1). LS-DYNA does not publish its exact
+formula; this is our documented choice.
+
+Frictional (frequency-independent) damping (G, SIGF): a deviatoric stress
+``s_f`` (a spring G in series with a friction element): rotated with the
+element, incremented by ``2 G dt D'``, scaled back to
+``sqrt(3/2 s_f:s_f) <= SIGF``. Off when G = 0 or SIGF = 0.
+
+Wave speed (time step, hourglass): ``c = sqrt((KM + 4/3 (G_t + G)) / rho)``
+with ``G_t = max(G0, g(l_i))`` the larger of the initial shear modulus
+``G0 = E0 / 3`` and the current tangent of the tabulated law, so stiffening
+rubber keeps a stable step. Units: GPa, kg/mm^3, mm/ms.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+from numba import njit
+
+from hollowbody.errors import DeckError
+from hollowbody.materials.rubber_table import (
+    RubberTable,
+    build_rubber_table,
+    check_rubber_curve,
+    table_lookup,
+)
+from hollowbody.materials.sym3_eigen import jacobi_eig3
+from hollowbody.model.model import Curve, MaterialDef
+
+P_BULK, P_MU, P_G0, P_RHO, P_CS, P_GF, P_SIGF, P_LN0, P_INVD = range(9)
+N_PARAMS = 9
+
+#: LS-DYNA default of MU.
+MU_DEFAULT = 0.1
+
+
+def rubber_params(mat: MaterialDef, curves: dict[int, Curve],
+                  check: bool = True) -> tuple[np.ndarray, RubberTable]:
+    """Packed parameters (N_PARAMS,) float64 and the f/g tables of a MAT_181 card.
+
+    Emits ``warnings.warn`` (UserWarning) for every Baker-Ericksen problem of
+    the curve (see :func:`~hollowbody.materials.rubber_table.check_rubber_curve`)
+    when ``check``. Raises DeckError for a missing curve or bad parameters.
+    """
+    p = mat.params
+    where = (mat.source.file, mat.source.line, mat.keyword or "MAT_SIMPLIFIED_RUBBER")
+    lcid = int(p.get("LCID", 0))
+    if lcid not in curves:
+        raise DeckError(f"material {mat.mid}: curve LCID {lcid} is not defined", *where)
+    km = float(p.get("KM", 0.0))
+    rho = float(mat.density)
+    if km <= 0.0:
+        raise DeckError(f"material {mat.mid}: KM must be > 0 (got {km})", *where)
+    if rho <= 0.0:
+        raise DeckError(f"material {mat.mid}: density must be > 0 (got {rho})", *where)
+    sgl = float(p.get("SGL", 1.0)) or 1.0
+    sw = float(p.get("SW", 1.0)) or 1.0
+    st = float(p.get("ST", 1.0)) or 1.0
+    mu = float(p.get("MU", MU_DEFAULT))
+    try:
+        table = build_rubber_table(curves[lcid], sgl, sw, st)
+    except ValueError as err:
+        raise DeckError(f"material {mat.mid}: {err}", *where) from None
+    if table.e0 <= 0.0:
+        raise DeckError(f"material {mat.mid}: curve {lcid} has no positive initial slope "
+                        "at zero strain", *where)
+    if check:
+        for msg in check_rubber_curve(curves[lcid], sgl, sw, st):
+            warnings.warn(f"material {mat.mid}: {msg}", UserWarning, stacklevel=2)
+    g0 = table.e0 / 3.0
+    out = np.zeros(N_PARAMS)
+    out[P_BULK] = km
+    out[P_MU] = max(mu, 0.0)
+    out[P_G0] = g0
+    out[P_RHO] = rho
+    out[P_CS] = math.sqrt(g0 / rho)
+    out[P_GF] = max(float(p.get("G", 0.0)), 0.0)
+    out[P_SIGF] = max(float(p.get("SIGF", 0.0)), 0.0)
+    out[P_LN0] = table.ln0
+    out[P_INVD] = table.inv_dln
+    return out, table
+
+
+def rubber_wave_speed0(params: np.ndarray) -> float:
+    """Initial dilatational wave speed (mm/ms) sqrt((KM + 4/3 (G0 + G)) / rho)."""
+    return math.sqrt((params[P_BULK] + 4.0 / 3.0 * (params[P_G0] + params[P_GF]))
+                     / params[P_RHO])
+
+
+@njit(cache=True)
+def rubber_deviatoric(f00, f01, f02, f10, f11, f12, f20, f21, f22, vec, ftab, gtab, ln0, invd):
+    """Kernel: deviatoric Kirchhoff stress of the tabulated law.
+
+    f..: deformation gradient F (row i, column j); vec (3, 3) scratch (set to
+    the identity here; holds the eigenvectors of F F^T on return); ftab, gtab
+    (N,) GPa tables; ln0, invd: grid origin and inverse step. Returns
+    (t0..t5, gt): tau' in Voigt order (GPa) and the largest current tangent
+    shear modulus gt (GPa).
+    """
+    b0 = f00 * f00 + f01 * f01 + f02 * f02
+    b1 = f10 * f10 + f11 * f11 + f12 * f12
+    b2 = f20 * f20 + f21 * f21 + f22 * f22
+    b3 = f00 * f10 + f01 * f11 + f02 * f12
+    b4 = f10 * f20 + f11 * f21 + f12 * f22
+    b5 = f00 * f20 + f01 * f21 + f02 * f22
+    for i in range(3):
+        for j in range(3):
+            vec[i, j] = 1.0 if i == j else 0.0
+    m0, m1, m2 = jacobi_eig3(b0, b1, b2, b3, b4, b5, vec)
+    tiny = 1e-300
+    l0 = math.log(max(m0, tiny))
+    l1 = math.log(max(m1, tiny))
+    l2 = math.log(max(m2, tiny))
+    lm = (l0 + l1 + l2) / 3.0
+    x0 = 0.5 * (l0 - lm)
+    x1 = 0.5 * (l1 - lm)
+    x2 = 0.5 * (l2 - lm)
+    fa = table_lookup(ftab, ln0, invd, x0)
+    fb = table_lookup(ftab, ln0, invd, x1)
+    fc = table_lookup(ftab, ln0, invd, x2)
+    gt = max(table_lookup(gtab, ln0, invd, x0), table_lookup(gtab, ln0, invd, x1),
+             table_lookup(gtab, ln0, invd, x2))
+    fm = (fa + fb + fc) / 3.0
+    ta = fa - fm
+    tb = fb - fm
+    tc = fc - fm
+    n00, n01, n02 = vec[0, 0], vec[0, 1], vec[0, 2]
+    n10, n11, n12 = vec[1, 0], vec[1, 1], vec[1, 2]
+    n20, n21, n22 = vec[2, 0], vec[2, 1], vec[2, 2]
+    t0 = ta * n00 * n00 + tb * n01 * n01 + tc * n02 * n02
+    t1 = ta * n10 * n10 + tb * n11 * n11 + tc * n12 * n12
+    t2 = ta * n20 * n20 + tb * n21 * n21 + tc * n22 * n22
+    t3 = ta * n00 * n10 + tb * n01 * n11 + tc * n02 * n12
+    t4 = ta * n10 * n20 + tb * n11 * n21 + tc * n12 * n22
+    t5 = ta * n00 * n20 + tb * n01 * n21 + tc * n02 * n22
+    return t0, t1, t2, t3, t4, t5, gt
+
+
+@njit(cache=True)
+def rubber_friction(s0, s1, s2, s3, s4, s5, e0, e1, e2, e3, e4, e5, gf, sigf):
+    """Kernel: frictional damping stress update.
+
+    s*: rotated old frictional stress (GPa, Voigt); e*: deviatoric strain
+    increment dt*D' (tensor components); gf: spring shear modulus; sigf: limit
+    (von Mises measure). Returns the new six components.
+    """
+    n0 = s0 + 2.0 * gf * e0
+    n1 = s1 + 2.0 * gf * e1
+    n2 = s2 + 2.0 * gf * e2
+    n3 = s3 + 2.0 * gf * e3
+    n4 = s4 + 2.0 * gf * e4
+    n5 = s5 + 2.0 * gf * e5
+    j2 = 0.5 * (n0 * n0 + n1 * n1 + n2 * n2) + n3 * n3 + n4 * n4 + n5 * n5
+    eq = math.sqrt(3.0 * j2)
+    if eq > sigf:
+        r = sigf / eq
+        n0 *= r
+        n1 *= r
+        n2 *= r
+        n3 *= r
+        n4 *= r
+        n5 *= r
+    return n0, n1, n2, n3, n4, n5

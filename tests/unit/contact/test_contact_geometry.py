@@ -1,0 +1,68 @@
+"""Closest-point projection of nodes onto triangles and bilinear quadrilaterals."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hollowbody.contact.geometry import project_segment
+
+
+def _rot(ax, ay):
+    cx, sx, cy, sy = np.cos(ax), np.sin(ax), np.cos(ay), np.sin(ay)
+    rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
+    ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+    return ry @ rx
+
+
+@pytest.mark.parametrize("tilt", [(0.0, 0.0), (0.3, -0.7)])
+@pytest.mark.parametrize("tri", [False, True])
+def test_projection_flat_and_tilted(tilt, tri):
+    r = _rot(*tilt)
+    base = np.array([[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0]], float)
+    x = base @ r.T + np.array([5.0, -3.0, 1.0])
+    seg = np.array([[0, 1, 2, 2]] if tri else [[0, 1, 2, 3]], np.int32)
+    local = np.array([1.5, 0.5, -0.25])  # below the segment, inside the triangle too
+    p = local @ r.T + np.array([5.0, -3.0, 1.0])
+    ok, inside, qx, qy, qz, nx, ny, nz, *w = project_segment(p[0], p[1], p[2], x, seg, 0)
+    assert ok and inside
+    n = r @ np.array([0.0, 0.0, 1.0])
+    np.testing.assert_allclose([nx, ny, nz], n, atol=1e-12)
+    xp = np.array([qx, qy, qz])
+    np.testing.assert_allclose(xp, np.array([1.5, 0.5, 0.0]) @ r.T + [5.0, -3.0, 1.0],
+                               atol=1e-12)
+    assert np.dot(p - xp, n) == pytest.approx(-0.25)
+    w = np.array(w)
+    assert w.sum() == pytest.approx(1.0)
+    np.testing.assert_allclose(w @ x[seg[0]], xp, atol=1e-12)
+    if not tri:
+        np.testing.assert_allclose(w, [0.1875, 0.5625, 0.1875, 0.0625])  # bilinear N_a
+
+
+def test_outside_point_is_flagged():
+    x = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    for seg in ([[0, 1, 2, 3]], [[0, 1, 2, 2]]):
+        ok, inside, *_ = project_segment(1.5, 0.5, 0.1, x, np.array(seg, np.int32), 0)
+        assert ok and not inside
+
+
+def test_warped_quad_newton_matches_dense_search():
+    rng = np.random.default_rng(3)
+    x = np.array([[0, 0, 0], [1, 0, 0.2], [1.1, 1, -0.1], [0, 0.9, 0.3]], float)
+    seg = np.array([[0, 1, 2, 3]], np.int32)
+    g = np.linspace(-1, 1, 401)
+    xi, eta = np.meshgrid(g, g, indexing="ij")
+    n = np.stack([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta),
+                  (1 - xi) * (1 + eta)], -1) / 4
+    surf = n @ x
+    for _ in range(20):
+        p = np.array([rng.uniform(0.2, 0.8), rng.uniform(0.2, 0.8), rng.uniform(-0.3, 0.3)])
+        ok, inside, qx, qy, qz, nx, ny, nz, *w = project_segment(p[0], p[1], p[2], x, seg, 0)
+        assert ok and inside
+        dmin = np.min(np.linalg.norm(surf - p, axis=-1))
+        d = np.linalg.norm(p - [qx, qy, qz])
+        assert d <= dmin + 1e-9 and d >= dmin - 5e-3
+        # p - xp is along the surface normal at xp
+        r = p - np.array([qx, qy, qz])
+        assert np.linalg.norm(np.cross(r, [nx, ny, nz])) < 1e-8
+        np.testing.assert_allclose(np.array(w) @ x, [qx, qy, qz], atol=1e-12)
