@@ -21,8 +21,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-#: Fewer slave nodes than this: serial kernels (thread start-up costs more).
-PARALLEL_MIN_NODES = 2048
+#: Fewer slave nodes than this: serial kernels (thread wake-up costs more;
+#: on a machine busier than its cores, OpenMP's spinning threads far more).
+PARALLEL_MIN_NODES = 16384
 #: Items per parallel work unit (array arguments cost an incref/decref per call).
 _CHUNK = 256
 #: Bound on grid pairs per segment before the cell size is doubled.
@@ -190,7 +191,7 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         return ptr, np.zeros(0, np.int32)
     lo = np.empty((seg.shape[0], 3))
     hi = np.empty((seg.shape[0], 3))
-    segment_boxes(x, seg, grow, lo, hi, parallel)
+    segment_boxes(x, seg, grow, lo, hi, parallel and seg.shape[0] >= 4 * PARALLEL_MIN_NODES)
     origin = lo.min(axis=0)
     ext = (hi - lo).max(axis=1)
     h = float(np.median(ext))
@@ -206,7 +207,7 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     keys = np.empty(total, np.int64)
     segs = np.empty(total, np.int32)
     _fill_pairs(lo, hi, origin, h, dims, cnt, keys, segs)
-    order = np.argsort(keys, kind="stable")
+    order = np.argsort(keys)
     skeys = keys[order]
     ssegs = segs[order]
     dummy = np.zeros(0, np.int32)

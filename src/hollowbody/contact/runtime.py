@@ -56,8 +56,10 @@ from hollowbody.model.model import ContactDef, Model
 #: Release depth, as a fraction of the element depth V / A behind a solid face
 #: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
 PENMAX = 0.4
-#: Passes with fewer nodes than this run serially (no parallel start-up cost).
-PARALLEL_MIN_NODES = 2048
+#: Passes with fewer nodes than this run serially: a pass costs ~0.1-0.2 us per
+#: node, so below this the thread wake-up is not worth it (and on a machine
+#: busier than its cores OpenMP's spinning threads make parallel far slower).
+PARALLEL_MIN_NODES = 16384
 #: Re-sort when a node has moved this fraction of the bucket margin.
 _RESORT_FRACTION = 0.5
 

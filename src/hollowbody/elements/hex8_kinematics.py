@@ -79,7 +79,7 @@ def canonical_connectivity(conn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return conn_k, shape
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _dvdx_component(xe, j, k, out, i):
     """Kernel: out[:, i] = dV/dx_{a,i} from coordinate columns j, k of xe (8, 3)."""
     p0, p1, p2, p3 = xe[0, j], xe[1, j], xe[2, j], xe[3, j]
@@ -112,7 +112,7 @@ def _dvdx_component(xe, j, k, out, i):
                  + p5 * (-q4 + q6) + p6 * (q2 + q3 - q4 - q5)) * _TWELFTH
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hex8_volume_derivatives(xe, out):
     """Kernel: exact volume and its nodal derivatives.
 
@@ -129,7 +129,7 @@ def hex8_volume_derivatives(xe, out):
     return v
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hex8_max_face_area(xe):
     """Kernel: largest face area (mm^2) of a hexahedron, xe (8, 3) mm.
 
@@ -154,7 +154,7 @@ def hex8_max_face_area(xe):
     return 0.5 * np.sqrt(amax)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def velocity_gradient(ve, b, lg):
     """Kernel: lg (3, 3) = sum_a v_a (x) b_a (1/ms); ve, b (8, 3)."""
     for i in range(3):
@@ -165,7 +165,7 @@ def velocity_gradient(ve, b, lg):
             lg[i, j] = s
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def midpoint_velocity_gradient(lg, dt):
     """Kernel: velocity gradient in the mid-step configuration, in place.
 
@@ -212,7 +212,7 @@ def midpoint_velocity_gradient(lg, dt):
     lg[2, 2] = (c20 * l02 + c21 * l12 + c22 * l22) * inv
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hughes_winget(lg, dt, q):
     """Kernel: incremental rotation q (3, 3) = (I - A)^-1 (I + A), A = dt/2 W.
 
@@ -237,7 +237,7 @@ def hughes_winget(lg, dt, q):
     q[2, 1] = s * (w1 + w2 * w3)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def rotate_sym(q, s0, s1, s2, s3, s4, s5):
     """Kernel: Q S Q^T for a symmetric S in Voigt order (xx, yy, zz, xy, yz, zx).
 
@@ -266,7 +266,7 @@ def rotate_sym(q, s0, s1, s2, s3, s4, s5):
 # Vectorised helpers (set-up, tests)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath={"contract"})
 def _gradients_loop(conn, x, b, vol, amax):
     xe = np.empty((8, 3))
     bt = np.empty((8, 3))

@@ -60,7 +60,7 @@ H_IHQ, H_QH, H_Q1, H_Q2 = range(4)
 _THIRD = 1.0 / 3.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _kinematics(e, conn, x, v, dt, xe, ve, bt, lg, lm, rot):
     """Gather element e and compute b (in bt), L_end (lg), L_mid (lm), Q (rot); returns V."""
     n0 = conn[e, 0]
@@ -90,7 +90,7 @@ def _kinematics(e, conn, x, v, dt, xe, ve, bt, lg, lm, rot):
     return vol
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _stress_forces(vol, s0, s1, s2, s3, s4, s5, b, fwork, e):
     """fwork[e, a] = -V sigma b_a (kN) (overwrites the element's slots).
 
@@ -104,7 +104,7 @@ def _stress_forces(vol, s0, s1, s2, s3, s4, s5, b, fwork, e):
         fwork[e, a, 2] = -vol * (s5 * bx + s4 * by + s2 * bz)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _power(ve, fwork, e):
     """sum_a v_a . fwork[e, a] (J/ms)."""
     p = 0.0
@@ -113,7 +113,7 @@ def _power(ve, fwork, e):
     return p
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _zero(fwork, e):
     for a in range(8):
         fwork[e, a, 0] = 0.0
@@ -121,7 +121,7 @@ def _zero(fwork, e):
         fwork[e, a, 2] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, qd, qf,
                hgstate, fwork):
     """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J)."""
@@ -140,7 +140,7 @@ def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, 
     return w
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _bulk_q(rho, l, c, trd, q1, q2):
     """Bulk-viscosity pressure (GPa), > 0 in compression, 0 in expansion."""
     if trd < 0.0:
@@ -148,7 +148,7 @@ def _bulk_q(rho, l, c, trd, q1, q2):
     return 0.0
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, fastmath={"contract"})
 def hex8_elastic_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hgstate,
                         fwork, dt_elem, c_elem, mp, hg, bounds, out):
     """Hexahedron + *MAT_ELASTIC for one group (see module docstring).
@@ -240,7 +240,7 @@ def hex8_elastic_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hg
         out[ck, 4] = ineg
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, fastmath={"contract"})
 def hex8_rubber_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hgstate,
                        fwork, dt_elem, c_elem, b0, fric, mp, ftab, gtab, hg, bounds, out):
     """Hexahedron + MAT_181 simplified rubber for one group.

@@ -34,7 +34,7 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath={"contract"})
 def _h_dot(p0, p1, p2, p3, p4, p5, p6, p7):
     """The four sums sum_a h_alpha,a p_a (butterfly over the +-1 entries of HG_BASE)."""
     a = p0 - p1
@@ -45,7 +45,7 @@ def _h_dot(p0, p1, p2, p3, p4, p5, p6, p7):
             a - b - c + d, -a - b + c + d)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hourglass_hx(xe, hx):
     """Kernel: hx (4, 3) = sum_a h_alpha,a x_a (mm); xe (8, 3) mm."""
     for i in range(3):
@@ -57,7 +57,7 @@ def hourglass_hx(xe, hx):
         hx[3, i] = h3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hourglass_rates(ve, lg_end, hx, qd):
     """Kernel: qd (4, 3) mm/ms, hourglass rates of the 4 modes.
 
@@ -74,7 +74,7 @@ def hourglass_rates(ve, lg_end, hx, qd):
         qd[3, i] = h3 - (l0 * hx[3, 0] + l1 * hx[3, 1] + l2 * hx[3, 2])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hourglass_add_forces(qf, hx, b, fwork, e):
     """Kernel: fwork[e, a] -= sum_alpha qf_alpha gamma_alpha,a (kN).
 
@@ -110,7 +110,7 @@ def hourglass_add_forces(qf, hx, b, fwork, e):
         fwork[e, 7, i] -= g7 - (m0 * b[7, 0] + m1 * b[7, 1] + m2 * b[7, 2])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hourglass_viscous(ah, dt, rot, qd, state, e, qf):
     """Kernel: viscous form, qf = ah * qd (kN), kept in state[e] (e, 4, 3).
 
@@ -137,7 +137,7 @@ def hourglass_viscous(ah, dt, rot, qd, state, e, qf):
     return w
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def hourglass_stiffness(kappa, dt, rot, qd, state, e, qf):
     """Kernel: incremental FB stiffness form for element ``e``.
 

@@ -1,6 +1,7 @@
 """Element kernel of the Belytschko-Lin-Tsay shell and the race-free nodal gather.
 
-One call of :func:`bt_shell_forces` does, for every live element (``prange``):
+One call of :func:`bt_shell_forces` does, for every live element (chunks of
+``CHUNK`` elements over threads with ``prange`` for large groups):
 
 1. strain rates from the half-step geometry ``x^{n+1/2} = x^{n+1} - dt/2 v``
    (midpoint rule: a rigid rotation of the chord velocities gives exactly zero
@@ -35,6 +36,16 @@ Belytschko-Tsay stiffness form with r = 1)::
   the reference stiffness, and the explicit viscous stability limit
   4 QH sqrt(k/m) dt < 2 holds for QH < 0.5 at the shell time step.
 * stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``).
+
+For warped elements the in-plane velocities of a rigid rotation about e1, e2
+(omega x z_I) are removed from the membrane hourglass rates (and the
+transpose added to the forces), so rigid rotations give no hourglass force.
+
+Drilling stabilization (``kp[K_DRILL] > 0``): each node's angular velocity
+about e3 is tied to the element's in-plane spin
+``0.5 (B1 . vy - B2 . vx)`` by an elastic moment ``m_I += k (theta_z,I -
+spin) dt``, ``k = factor * G t A``; the reaction is an in-plane couple on the
+element (power-consistent; zero for rigid motion).
 """
 
 from __future__ import annotations
@@ -53,6 +64,7 @@ from hollowbody.elements.shell_bt_kinematics import (
     dot3,
 )
 from hollowbody.materials.plane_stress_plasticity import (
+    FASTMATH,
     KIND_ELASTIC,
     P_C,
     P_CS_C,
@@ -83,7 +95,7 @@ K_THICK_UPDATE = 4  # 1: thickness follows the through-thickness strain
 N_CONTROLS = 5
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
     """Global Voigt (xx yy zz xy yz zx) of a local tensor with s_zz = 0; R = [e1 e2 e3]."""
     out0 = 0.0
@@ -115,7 +127,7 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
     return out0, out1, out2, out3, out4, out5
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
 def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta,
                    wts, kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte,
                    die, dhe, stress_out, pmax):
@@ -434,70 +446,3 @@ def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, z
         _bt_shell_parallel(*args)
     else:
         bt_shell_range(0, conn.shape[0], *args)
-
-
-@njit(cache=True)
-def _gather_range(lo, hi, fe, nodes, ptr, ref, f, moment, with_moment):
-    for j in range(lo, hi):
-        n = nodes[j]
-        s0 = 0.0
-        s1 = 0.0
-        s2 = 0.0
-        s3 = 0.0
-        s4 = 0.0
-        s5 = 0.0
-        for p in range(ptr[j], ptr[j + 1]):
-            r = ref[p]
-            e = r // 4
-            c = r - 4 * e
-            s0 += fe[e, c, 0]
-            s1 += fe[e, c, 1]
-            s2 += fe[e, c, 2]
-            s3 += fe[e, c, 3]
-            s4 += fe[e, c, 4]
-            s5 += fe[e, c, 5]
-        f[n, 0] += s0
-        f[n, 1] += s1
-        f[n, 2] += s2
-        if with_moment:
-            moment[n, 0] += s3
-            moment[n, 1] += s4
-            moment[n, 2] += s5
-
-
-@njit(cache=True, parallel=True)
-def _gather_parallel(fe, nodes, ptr, ref, f, moment, with_moment):
-    k = nodes.shape[0]
-    nchunk = (k + 4 * CHUNK - 1) // (4 * CHUNK)
-    for c in prange(nchunk):
-        _gather_range(c * 4 * CHUNK, min(k, (c + 1) * 4 * CHUNK), fe, nodes, ptr, ref, f,
-                      moment, with_moment)
-
-
-def gather_node_forces(fe: np.ndarray, nodes: np.ndarray, ptr: np.ndarray, ref: np.ndarray,
-                       f: np.ndarray, moment: np.ndarray, with_moment: bool) -> None:
-    """Add element forces into nodal arrays, one node per thread (no races).
-
-    fe (e,4,6); nodes (k,) int64 node indices used by the group; ptr (k+1,)
-    int64 CSR offsets into ref (m,) int64 entries ``4 * element + corner``.
-    f (n,3) kN += forces; moment (n,3) kN*mm += moments when ``with_moment``.
-    """
-    if nodes.shape[0] >= PARALLEL_MIN:
-        _gather_parallel(fe, nodes, ptr, ref, f, moment, with_moment)
-    else:
-        _gather_range(0, nodes.shape[0], fe, nodes, ptr, ref, f, moment, with_moment)
-
-
-def node_gather_map(conn: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CSR map node -> element corners of ``conn`` (e, 4).
-
-    Returns ``(nodes, ptr, ref)``: the sorted distinct node indices (k,) int64,
-    offsets (k+1,) int64 and entries (4e,) int64 ``4 * element + corner``.
-    A triangle's repeated node appears twice (both corners add).
-    """
-    flat = conn.reshape(-1).astype(np.int64)
-    order = np.argsort(flat, kind="stable")
-    nodes, counts = np.unique(flat[order], return_counts=True)
-    ptr = np.zeros(nodes.size + 1, dtype=np.int64)
-    np.cumsum(counts, out=ptr[1:])
-    return nodes.astype(np.int64), ptr, order.astype(np.int64)

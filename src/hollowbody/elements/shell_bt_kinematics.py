@@ -39,22 +39,24 @@ import math
 
 from numba import njit
 
+from hollowbody.materials.plane_stress_plasticity import FASTMATH
+
 _TINY = 1.0e-300
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def cross3(a, b):
     """Cross product of two 3-tuples."""
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def dot3(a, b) -> float:
     """Dot product of two 3-tuples."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def bt_geometry(p0, p1, p2, p3):
     """Co-rotational frame, local coordinates and area of a shell.
 
@@ -91,7 +93,7 @@ def bt_geometry(p0, p1, p2, p3):
     return e1, e2, e3, xl, yl, zl, area
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def bt_bmatrix(xl, yl, area):
     """One-point derivative operator ``(B1, B2)`` (4-tuples, 1/mm) of local coordinates."""
     f = 0.5 / max(area, _TINY)
@@ -100,7 +102,7 @@ def bt_bmatrix(xl, yl, area):
     return b1, b2
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def bt_hourglass_vector(xl, yl, b1, b2):
     """Belytschko-Tsay hourglass shape vector gamma = h - (h.xl) B1 - (h.yl) B2 (4-tuple).
 
@@ -112,7 +114,7 @@ def bt_hourglass_vector(xl, yl, b1, b2):
             1.0 - hx * b1[2] - hy * b2[2], -1.0 - hx * b1[3] - hy * b2[3])
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def characteristic_length(xl, yl, area, triangle: bool) -> float:
     """LS-DYNA's shell length (ISDO = 0): A / longest side (quads), 2A / longest side (tris)."""
     l01 = (xl[1] - xl[0]) ** 2 + (yl[1] - yl[0]) ** 2
@@ -125,7 +127,7 @@ def characteristic_length(xl, yl, area, triangle: bool) -> float:
     return area / max(lmax, _TINY)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def bt_strain_rates(b1, b2, vx, vy, vz, tx, ty):
     """Mid-surface strain rates of the one-point BT shell.
 

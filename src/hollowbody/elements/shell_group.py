@@ -14,10 +14,19 @@ reported in :attr:`ShellGroupRuntime.warnings`.
 
 Rotational inertia (LS-DYNA style scaling so rotations never govern the time
 step): every distinct node of an element gets ``m_e / n_nodes * max(t^2/12,
-A/8)`` (m_e = rho A t). With A/8 the rotational frequencies of the
-bending and transverse-shear modes stay below the membrane ones (see
-docs/shells.md), and for thick elements (t^2 > 1.5 A) the physical rotary
-inertia t^2/12 is used.
+A/4)`` (m_e = rho A t). An element-level eigen-analysis (docs/shells.md) shows
+that with A/4 the rotation-dominated modes (bending, transverse shear,
+drilling) stay below the membrane modes that set dt = L_s / c for squares,
+rectangles, distorted quadrilaterals and triangles; A/8 is not enough for
+square elements with nu = 0. Thick elements (t^2 > 3 A) keep the physical
+rotary inertia t^2 / 12.
+
+Drilling: nodal rotations about the element normal have no physical
+stiffness in the Belytschko-Tsay shell; a small elastic drilling stiffness
+``drilling * G t A`` per node ties them to the element's in-plane spin (its
+energy is reported with the hourglass energy). Without it a bent shell's
+moments can drive the free drilling rotations (a rolled-up strip flutters);
+``drilling=0`` gives LS-DYNA's behaviour.
 """
 
 from __future__ import annotations
@@ -35,9 +44,8 @@ from hollowbody.elements.shell_bt_forces import (
     K_THICK_UPDATE,
     N_CONTROLS,
     bt_shell_forces,
-    gather_node_forces,
-    node_gather_map,
 )
+from hollowbody.elements.shell_gather import gather_node_forces, node_gather_map
 from hollowbody.elements.shell_thickness_rules import through_thickness_rule
 from hollowbody.errors import DeckError
 from hollowbody.materials.plane_stress_material import PlaneStressMaterial, shell_material
@@ -163,7 +171,7 @@ class ShellGroupRuntime:
     def lumped_rotational_inertia(self, n_nodes: int) -> np.ndarray:
         """(n,) kg*mm^2 nodal rotational inertia of this group.
 
-        Each distinct node of an element gets ``m_e / k * max(t^2/12, A/8)``
+        Each distinct node of an element gets ``m_e / k * max(t^2/12, A/4)``
         (k = 4 for quadrilaterals, 3 for triangles), so rotations never govern
         the time step (see the module docstring).
         """

@@ -18,7 +18,7 @@ from numba import njit
 from hollowbody.elements.hex8_kinematics import characteristic_lengths
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def critical_time_step(length, c, l_visc, trd, q1, q2):
     """Kernel: dt_crit (ms) of one element.
 

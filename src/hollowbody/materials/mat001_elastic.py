@@ -51,7 +51,7 @@ def elastic_params(mat: MaterialDef) -> np.ndarray:
     return p
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def elastic_update(s0, s1, s2, s3, s4, s5, d0, d1, d2, d3, d4, d5, lam, mu):
     """Kernel: new stress from the rotated old stress and the strain increment.
 

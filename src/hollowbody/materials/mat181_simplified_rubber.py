@@ -107,7 +107,7 @@ def rubber_wave_speed0(params: np.ndarray) -> float:
                      / params[P_RHO])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def rubber_deviatoric(f00, f01, f02, f10, f11, f12, f20, f21, f22, vec, ftab, gtab, ln0, invd):
     """Kernel: deviatoric Kirchhoff stress of the tabulated law.
 
@@ -156,7 +156,7 @@ def rubber_deviatoric(f00, f01, f02, f10, f11, f12, f20, f21, f22, vec, ftab, gt
     return t0, t1, t2, t3, t4, t5, gt
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def rubber_friction(s0, s1, s2, s3, s4, s5, e0, e1, e2, e3, e4, e5, gf, sigf):
     """Kernel: frictional damping stress update.
 

@@ -37,6 +37,11 @@ import math
 
 from numba import njit
 
+#: LLVM fast-math flags of the shell kernels: reassociation, reciprocals, contraction
+#: (FMA) and approximate functions, but no "no-NaN / no-Inf" assumptions (dead
+#: elements carry an infinite time step; NaNs must propagate to the loop's check).
+FASTMATH = {"nsz", "arcp", "contract", "afn", "reassoc"}
+
 SQ2 = math.sqrt(2.0)
 SQ23 = math.sqrt(2.0 / 3.0)
 
@@ -62,7 +67,7 @@ YIELD_TOL = 1.0e-11
 _MAX_IT = 60
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def table_eval(x: float, cx, cy) -> tuple[float, float]:
     """Piecewise-linear table value and slope at ``x``.
 
@@ -90,7 +95,7 @@ def table_eval(x: float, cx, cy) -> tuple[float, float]:
     return cy[lo] + s * (x - cx[lo]), s
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def effective_strain_rate(dxx: float, dyy: float, gxy: float) -> float:
     """Von Mises equivalent of an in-plane strain rate (1/ms), d_zz = -(d_xx + d_yy).
 
@@ -102,7 +107,7 @@ def effective_strain_rate(dxx: float, dyy: float, gxy: float) -> float:
     return math.sqrt((2.0 / 3.0) * (dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * dxy * dxy))
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def elastic_plane_stress(sxx: float, syy: float, sxy: float, dexx: float, deyy: float,
                          dgxy: float, e: float, nu: float) -> tuple[float, float, float]:
     """Hypoelastic plane-stress update sigma + C d_eps (GPa); d_eps with engineering shear."""
@@ -112,7 +117,7 @@ def elastic_plane_stress(sxx: float, syy: float, sxy: float, dexx: float, deyy: 
     return sxx + c11 * dexx + c12 * deyy, syy + c12 * dexx + c11 * deyy, sxy + g * dgxy
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
 def plane_stress_return(sxx: float, syy: float, sxy: float, axx: float, ayy: float,
                         axy: float, ep: float, dexx: float, deyy: float, dgxy: float,
                         e: float, nu: float, hk: float, cx, cy, rate_factor: float):
@@ -148,10 +153,13 @@ def plane_stress_return(sxx: float, syy: float, sxy: float, axx: float, ayy: flo
         return txx, tyy, txy, axx, ayy, axy, ep, 0.0
     a1 = e / (3.0 * (1.0 - nu)) + (2.0 / 3.0) * hk
     a2 = g2 + (2.0 / 3.0) * hk
+    # Consistency f(dg) = sqrt(2/3) sigma_y(ep + sqrt(2/3) dg f(dg)), solved as
+    # psi(dg) = sqrt(2/3) sigma_y / f - 1 = 0: f ~ f_trial / (1 + a dg) makes psi nearly
+    # linear in dg (exactly so for a1 = a2 without hardening), so Newton needs 1-3
+    # steps; psi increases with dg, a bracket [lo, hi] guards the steps.
     dg = 0.0
     lo = 0.0
     hi = -1.0  # no upper bracket yet
-    f = math.sqrt(f2)
     for _ in range(_MAX_IT):
         d1 = 1.0 + a1 * dg
         d2 = 1.0 + a2 * dg
@@ -160,16 +168,16 @@ def plane_stress_return(sxx: float, syy: float, sxy: float, axx: float, ayy: flo
         sy, hp = table_eval(ep + SQ23 * dg * f, cx, cy)
         sy *= rate_factor
         hp *= rate_factor
-        phi = 0.5 * f2 - sy * sy / 3.0
-        if abs(phi) <= YIELD_TOL * sy * sy:
+        psi = SQ23 * sy / f - 1.0
+        if abs(psi) <= YIELD_TOL:
             break
-        if phi > 0.0:
+        if psi < 0.0:
             lo = dg
         else:
             hi = dg
-        df2 = -2.0 * (a1 * b1 / (d1 * d1 * d1) + a2 * b2 / (d2 * d2 * d2))
-        dphi = 0.5 * df2 - (2.0 / 3.0) * sy * hp * SQ23 * (f + dg * df2 / (2.0 * f))
-        dgn = dg - phi / dphi if dphi < 0.0 else -1.0
+        df = -(a1 * b1 / (d1 * d1 * d1) + a2 * b2 / (d2 * d2 * d2)) / f
+        dpsi = SQ23 * (hp * SQ23 * (f + dg * df) * f - sy * df) / f2
+        dgn = dg - psi / dpsi if dpsi > 0.0 else -1.0
         if dgn <= lo or (hi >= 0.0 and dgn >= hi):
             dgn = 0.5 * (lo + hi) if hi >= 0.0 else 2.0 * lo + 1.0e-12
         if hi >= 0.0 and hi - lo <= 1.0e-15 * hi:
@@ -193,7 +201,7 @@ def plane_stress_return(sxx: float, syy: float, sxy: float, axx: float, ayy: flo
             SQ2 * dg * y1 / 3.0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
 def rate_factor(mp, rx, ry, dxx: float, dyy: float, gxy: float) -> float:
     """Yield-stress scale factor for the strain rate of an in-plane rate (1/ms).
 

@@ -17,8 +17,8 @@ slope). The series is summed until ``|ln l_k| < 1e-12`` (about 40 terms).
 
 ``f`` and the tangent ``g = (1/2) df/dln(l)`` (a shear modulus; ``g(1) = G0``
 for a smooth curve) are tabulated on a uniform grid of ``ln l`` over
-[ln 0.05, ln 6] (4096 points), so the element kernel only interpolates; outside
-the grid they are extrapolated linearly in ``ln l``.
+[ln 0.05, ln 6] (4096 points, l = 1 on a node), so the element kernel only
+interpolates; outside the grid they are extrapolated linearly in ``ln l``.
 
 Stability: the law satisfies the Baker-Ericksen inequality iff f is
 increasing. :func:`check_rubber_curve` reports where it is not.
@@ -115,14 +115,19 @@ def build_rubber_table(curve: Curve, sgl: float = 1.0, sw: float = 1.0, st: floa
                        n: int = N_TABLE) -> RubberTable:
     """Tabulate f and its tangent for a MAT_181 curve (see module docstring)."""
     strain, stress = curve_stress_strain(curve, sgl, sw, st)
-    ln = np.linspace(math.log(lam_min), math.log(lam_max), n)
+    # uniform grid with l = 1 on a node: f(1) = 0 exactly and the curve's kink at
+    # zero strain (different slopes of the two branches) sits on a node
+    lo, hi = math.log(lam_min), math.log(lam_max)
+    step = (hi - lo) / (n - 1)
+    i0 = round(-lo / step)
+    ln = (np.arange(n) - i0) * step
     f = kirchhoff_function(np.exp(ln), strain, stress)
     g = 0.5 * np.gradient(f, ln)
     return RubberTable(ln0=float(ln[0]), inv_dln=float(1.0 / (ln[1] - ln[0])), f=f, g=g,
                        e0=initial_modulus(strain, stress), lcid=curve.lcid)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always", fastmath={"contract"})
 def table_lookup(tab, ln0, inv_dln, ln_lam):
     """Kernel: linear interpolation of tab (N,) at ln(l), linear extrapolation outside."""
     u = (ln_lam - ln0) * inv_dln

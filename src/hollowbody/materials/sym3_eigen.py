@@ -14,7 +14,7 @@ import math
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath={"contract"})
 def jacobi_eig3(a0, a1, a2, a3, a4, a5, vec, tol=1e-14, max_sweeps=12):
     """Kernel: eigenvalues and eigenvectors of the symmetric matrix A.
 

@@ -169,6 +169,14 @@ class _Loop:
             self.cycle += 1
             self._forces(dt)
             self.dt_min = min(self.dt_min, dt)
+            running = self.t < self.end_time * (1.0 - 1e-12)
+            if running and not np.isfinite(self.dt_next):
+                raise _Terminate(ERROR, f"no deformable element left at t={self.t:.6g} ms "
+                                 f"({self.n_eroded} eroded)")
+            if running and not self.dt_next > 0.0:
+                elem, pid = self.dt_crit_elem
+                raise _Terminate(ERROR, f"time step collapsed to zero at t={self.t:.6g} ms "
+                                 f"(element {elem}, part {pid})", element=elem, part=pid)
             if dtmin > 0.0 and not self.erode and self.dt_next < dtmin * self.dt0:
                 elem, pid = self.dt_crit_elem
                 raise _Terminate(ERROR, f"time step {self.dt_next:.4e} ms below DTMIN "

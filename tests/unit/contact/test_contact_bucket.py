@@ -22,15 +22,16 @@ def _random_mesh(rng, n_nodes, n_seg, spread):
     return x, seg
 
 
+@pytest.mark.parametrize("parallel", [False, True])
 @pytest.mark.parametrize("seed", range(5))
-def test_bucket_sort_equals_brute_force(seed):
+def test_bucket_sort_equals_brute_force(seed, parallel):
     rng = np.random.default_rng(seed)
     x, seg = _random_mesh(rng, 400, 300, spread=[50.0, 20.0, 5.0][seed % 3])
     grow = rng.uniform(0.0, 2.0, size=seg.shape[0])
     if seed == 4:
         grow[0] = 200.0  # one huge box must not break the grid
     nodes = rng.choice(x.shape[0], 250, replace=False).astype(np.int32)
-    ptr, cand = bucket_sort(x, nodes, seg, grow)
+    ptr, cand = bucket_sort(x, nodes, seg, grow, parallel=parallel)
     ref = brute_force_candidates(x, nodes, seg, grow)
     for i in range(nodes.shape[0]):
         got = cand[ptr[i]:ptr[i + 1]].tolist()
@@ -89,6 +90,7 @@ def test_runtime_with_resorting_matches_all_pairs_search():
     mass = np.full(n, 1e-3)
     cd = part_contact(1, "surface_to_surface", [1], [2], fs=0.2, fd=0.1)
     a = ContactRuntime(cd, model, mass, np.zeros(n, bool))
+    a.parallel_min_nodes = 0  # threaded kernels here, serial ones in b
     b = AllPairs(cd, model, mass, np.zeros(n, bool))
     x = model.node_x0.copy()
     v = rng.normal(0.0, 0.3, size=(n, 3))

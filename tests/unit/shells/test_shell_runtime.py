@@ -189,3 +189,17 @@ def test_thickness_follows_membrane_strain_when_updated():
         assert rt.thickness_strain[0] == pytest.approx(ezz, rel=2e-5)  # midpoint B
         expected = math.exp(rt.thickness_strain[0]) if update else 1.0
         assert rt.thickness[0] == pytest.approx(expected, rel=1e-14)
+
+
+@pytest.mark.parametrize("nip, qr", [(1, 0.0), (3, -1.0), (4, 1.0), (10, 0.0)])
+def test_integration_rules_give_the_same_membrane_state(nip, qr):
+    x = np.array([[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0]], dtype=float)
+    conn = np.array([[0, 1, 2, 3]], dtype=np.int32)
+    g = ShellGroup(pid=1, elem_ids=np.array([1]), conn=conn, thickness=np.full((1, 4), 1.0))
+    mat = MaterialDef(mid=1, kind="elastic", density=RHO, params={"E": E, "PR": NU})
+    sec = SectionDef(secid=1, kind="shell", elform=2, params={"NIP": nip, "QR": qr})
+    rt = ShellGroupRuntime(g, mat, sec, HourglassDef(hgid=0), {}, x)
+    assert rt.nip == nip and rt.weights.sum() == pytest.approx(2.0)
+    v = np.array([[0, 0, 0], [1, 0, 0], [1, 0, 0], [0, 0, 0]], dtype=float)
+    call(rt, x + 1e-4 * v, v, None, 1e-4)
+    assert rt.stress[0, 0] == pytest.approx(E / (1 - NU ** 2) * 1e-5, rel=1e-4)

@@ -83,3 +83,29 @@ def cube_and_plate(*, e: float = 0.01, pr: float = 0.3, h: float = 5.0, n: int =
         deck.add(DatabaseAscii(name=name, dt=end / 200))
     deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
     return deck
+
+
+def crushed_column(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float = 1.0,
+                   erode: int = 0, dtmin: float = 0.0) -> Deck:
+    """A column of n hexahedra (edge h), bottom nodes fixed, top nodes driven down by
+    ``crush`` mm over ``end`` ms (every node of the top face prescribed, so the top
+    element's volume is exactly h^2 (h - u) until the column's top passes the next layer)."""
+    xb, cb = block_mesh((h, h, n * h), h)
+    ids = np.arange(1, xb.shape[0] + 1)
+    deck = Deck()
+    deck.title = "crushed column"
+    deck.add_nodes(ids, xb)
+    deck.add_solids(np.arange(1, cb.shape[0] + 1), 7, ids[cb])
+    deck.add(Part(pid=7, secid=1, mid=1, hgid=1, title="column"))
+    deck.add(SectionSolid(secid=1))
+    deck.add(MatElastic(mid=1, ro=1.0e-6, e=0.01, pr=0.3))
+    deck.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+    deck.add(SetNodeList(sid=1, nodes=ids[xb[:, 2] < 1e-9].tolist()))
+    deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1))
+    deck.add(SetNodeList(sid=2, nodes=ids[xb[:, 2] > n * h - 1e-9].tolist()))
+    deck.add(DefineCurve(lcid=1, points=[[0.0, 0.0], [end, -crush]]))
+    deck.add(PrescribedMotionSet(nsid=2, dof=3, vad=2, lcid=1))
+    deck.add(ControlTermination(endtim=end, dtmin=dtmin))
+    deck.add(ControlTimestep(tssfac=0.9, erode=erode))
+    deck.add(DatabaseAscii(name="GLSTAT", dt=end / 100))
+    return deck

@@ -1,0 +1,173 @@
+"""What the calibration runs: a simulator of the solid and the hollow block.
+
+A *simulator* is any picklable object with
+
+- ``solid(speed_kmh, run_dir) -> RunOutcome``: the solid reference block,
+- ``hollow(params, speed_kmh, run_dir) -> RunOutcome``: the hollow block with
+  wall parameters ``params`` ({name: value} in the units of
+  :mod:`hollowbody.calibrate.space`),
+- ``describe() -> dict``: a JSON description of everything that changes the
+  result (the cache and the resume check compare it).
+
+:class:`BlockSimulator` runs the real block test
+(:func:`hollowbody.scenarios.block.block_impact`); the analytic
+:class:`~hollowbody.calibrate.surrogate.SurrogateSimulator` stands in for it in
+tests and benchmarks. Simulators are shipped to worker processes, so they
+hold plain data only.
+"""
+
+from __future__ import annotations
+
+import time
+from contextlib import redirect_stderr, redirect_stdout
+from dataclasses import asdict, dataclass, field
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any, Protocol
+
+from hollowbody.calibrate.space import PARAMETERS
+from hollowbody.report.force_displacement import ForceDisplacement
+
+NORMAL = "normal termination"
+ERROR = "error termination"
+INTERRUPT = "user interrupt"
+#: Status of an evaluation that raised a Python exception (not cached).
+EXCEPTION = "exception"
+#: Status of an evaluation whose worker was lost for good (not cached).
+LOST = "lost"
+
+#: File in a run folder that receives the run's console output (warnings).
+CONSOLE_LOG = "console.log"
+
+#: Cell size (mm) of the hollow grid, as in the paper.
+CELL_MM = 30.0
+
+
+def package_version() -> str:
+    """hollowbody's version (part of every simulator description)."""
+    try:
+        return version("hollowbody")
+    except PackageNotFoundError:  # pragma: no cover - source tree without install
+        return "0+unknown"
+
+
+@dataclass
+class RunOutcome:
+    """One run: its curve (time ms, displacement mm, force kN), status and cost.
+
+    status: 'normal termination' / 'error termination' / 'user interrupt';
+    summary: the run's summary.json dict (may be partial for surrogates).
+    """
+
+    curve: ForceDisplacement
+    status: str
+    reason: str
+    wall_seconds: float
+    cycles: int = 0
+    run_dir: str | None = None
+    summary: dict = field(default_factory=dict)
+
+
+class Simulator(Protocol):
+    """The solid and hollow block at a speed (see the module docstring)."""
+
+    def solid(self, speed_kmh: float, run_dir: Path) -> RunOutcome: ...
+
+    def hollow(self, params: dict[str, float], speed_kmh: float,
+               run_dir: Path) -> RunOutcome: ...
+
+    def describe(self) -> dict: ...
+
+
+def elements_per_edge(mesh: float, cell: float = CELL_MM) -> int:
+    """Shell elements along a hollow cell's edge for a mesh size (mm): round(cell/mesh) >= 1."""
+    return max(1, int(round(cell / mesh)))
+
+
+@dataclass(frozen=True)
+class BlockSimulator:
+    """The block test of :mod:`hollowbody.scenarios.block`.
+
+    tissue: 'muscle' or 'fat'; mesh: solid element edge (mm), also the hollow
+    walls' element size (``elements_per_edge = round(30 / mesh)``); end_time:
+    simulated time (ms; None: the block's default); fixed: values of hollow
+    parameters that are not calibrated ({name: value}, e.g. {'thickness': 1.2});
+    options: further :class:`~hollowbody.scenarios.block.BlockConfig` fields
+    (e.g. {'friction': 0.1}); vtk: write ParaView states. The solver's console
+    output (warnings) goes to ``console.log`` in each run folder.
+    """
+
+    tissue: str = "muscle"
+    mesh: float = 7.5
+    end_time: float | None = None
+    fixed: tuple[tuple[str, float], ...] = ()
+    options: tuple[tuple[str, Any], ...] = ()
+    vtk: bool = False
+
+    @classmethod
+    def make(cls, tissue: str = "muscle", mesh: float = 7.5, end_time: float | None = None,
+             fixed: dict[str, float] | None = None, options: dict[str, Any] | None = None,
+             vtk: bool = False) -> BlockSimulator:
+        """Build from dicts (kept as sorted tuples so the simulator is hashable)."""
+        return cls(tissue, float(mesh), end_time, tuple(sorted((fixed or {}).items())),
+                   tuple(sorted((options or {}).items())), vtk)
+
+    def config(self, structure: str, speed_kmh: float, params: dict[str, float] | None = None):
+        """The :class:`~hollowbody.scenarios.block.BlockConfig` of one run (ValueError if bad)."""
+        from hollowbody.scenarios.block import BlockConfig
+
+        kw: dict[str, Any] = dict(self.options)
+        if structure == "hollow":
+            values = {**dict(self.fixed), **(params or {})}
+            for name, value in values.items():
+                kw[PARAMETERS[name][3]] = float(value)
+            kw.setdefault("elements_per_edge", elements_per_edge(self.mesh,
+                                                                 kw.get("cell", CELL_MM)))
+        return BlockConfig(tissue=self.tissue, structure=structure, speed_kmh=float(speed_kmh),
+                           mesh=self.mesh, end_time=self.end_time, **kw)
+
+    def _run(self, structure: str, speed_kmh: float, run_dir: Path,
+             params: dict[str, float] | None = None) -> RunOutcome:
+        from hollowbody.scenarios.block import block_impact
+
+        cfg = self.config(structure, speed_kmh, params)
+        t0 = time.perf_counter()
+        run_dir = Path(run_dir)
+        run_dir.mkdir(parents=True, exist_ok=True)
+        # the solver's console warnings go to the run folder, not the calibration's terminal
+        with open(run_dir / CONSOLE_LOG, "w") as fh, redirect_stderr(fh), redirect_stdout(fh):
+            res = block_impact(cfg, run_dir, vtk=self.vtk, quiet=True)
+        s = res.summary
+        return RunOutcome(curve=res.curve, status=s.get("status", ERROR),
+                          reason=s.get("reason", ""),
+                          wall_seconds=float(s.get("wall_seconds", time.perf_counter() - t0)),
+                          cycles=int(s.get("cycles", 0)), run_dir=str(run_dir), summary=s)
+
+    def solid(self, speed_kmh: float, run_dir: Path) -> RunOutcome:
+        return self._run("solid", speed_kmh, run_dir)
+
+    def hollow(self, params: dict[str, float], speed_kmh: float, run_dir: Path) -> RunOutcome:
+        return self._run("hollow", speed_kmh, run_dir, params)
+
+    def warm_up(self, params: dict[str, float] | None = None) -> None:
+        """Compile the solver's kernels in this process (a 0.05 ms solid and hollow run in a
+        scratch folder), so that measured wall times are those of the runs alone."""
+        import tempfile
+        from dataclasses import replace
+
+        short = replace(self, end_time=0.05, vtk=False)
+        with tempfile.TemporaryDirectory(prefix="hollowbody_warm_up_") as tmp:
+            for structure in ("solid", "hollow"):
+                try:
+                    short._run(structure, 40.0, Path(tmp) / structure, params)
+                except Exception:  # the measured run will report it
+                    pass
+
+    def describe(self) -> dict:
+        d = asdict(self)
+        d["fixed"] = dict(self.fixed)
+        d["options"] = dict(self.options)
+        d.pop("vtk")
+        d["elements_per_edge"] = elements_per_edge(self.mesh,
+                                                   dict(self.options).get("cell", CELL_MM))
+        return {"kind": "block", "hollowbody": package_version(), **d}

@@ -1,0 +1,176 @@
+"""``hollowbody calibrate``: fit the hollow block's walls to the solid tissue (paper 2.1).
+
+Runs the solid block once per speed (cached in DIR/reference/<speed>kmh), then
+a genetic algorithm over the hollow walls' parameters; each candidate runs the
+hollow block at every speed and scores the least-squares distance between
+its force-displacement curve and the solid one (loading and unloading,
+normalised by the reference's peak force and maximum displacement; summed
+over speeds). Evaluations run in parallel on a local dask cluster (default:
+one worker per CPU) or on an existing one (--scheduler). Every evaluation is
+cached in DIR/evaluations.jsonl and the GA checkpointed after each
+generation: --resume continues a stopped calibration without running
+anything twice.
+
+Parameters (default bounds): E 10..400 MPa, yield 0.5..20 MPa, etan 0..50 MPa,
+thickness 0.5..3 mm. Outputs in DIR: calibration.json, convergence.png,
+overlay.png, best_hollow/deck.k, table1.md, table1.csv.
+
+Exit codes: 0 done, 2 bad input, 3 the calibration could not run (solid
+reference failed, every candidate raised), 130 interrupted (checkpoint kept).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from hollowbody.errors import UserInputError
+
+EXIT_FAILED = 3
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("calibrate", help="fit the hollow structure to the solid tissue (GA)",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--tissue", choices=("muscle", "fat"), required=True)
+    p.add_argument("--speeds", default="40",
+                   help="impact speeds in km/h, comma-separated (default 40)")
+    p.add_argument("--params", default="E,yield",
+                   help="calibrated parameters, comma-separated, from E, yield, etan, "
+                        "thickness (default E,yield)")
+    p.add_argument("--bounds", nargs="+", action="extend", default=[], metavar="NAME=LO:HI",
+                   help="bounds of a calibrated parameter, e.g. E=20:300 yield=1:10 "
+                        "(MPa; thickness in mm)")
+    p.add_argument("--fix", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
+                   help="value of a parameter that is not calibrated, e.g. thickness=1.2 "
+                        "(default: etan 0 MPa, thickness 1.5 mm)")
+    add_ga_options(p)
+    add_runner_options(p)
+    p.add_argument("--resume", action="store_true",
+                   help="continue the calibration checkpointed in --out")
+    p.add_argument("--mesh", type=float, default=7.5,
+                   help="solid element edge in mm, also the hollow walls' element size "
+                        "(round(30/mesh) per cell edge); must divide 180 and 90 (default 7.5)")
+    p.add_argument("--end-time", type=float, default=None,
+                   help="simulated time in ms (default: the block's, long enough to rebound)")
+    p.add_argument("--cfc", type=float, default=180.0,
+                   help="SAE J211 filter class of the contact force in the fitness "
+                        "(default 180; 0: no filter)")
+    p.add_argument("--quiet", action="store_true", help="no progress display")
+    p.add_argument("--out", type=Path, required=True, help="output folder")
+    p.set_defaults(func=main)
+
+
+def add_ga_options(p: argparse.ArgumentParser, population: int = 16,
+                   generations: int = 20) -> None:
+    p.add_argument("--population", type=int, default=population,
+                   help=f"GA population size (default {population})")
+    p.add_argument("--generations", type=int, default=generations,
+                   help=f"GA generations including the initial one (default {generations})")
+    p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+
+
+def add_runner_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--workers", type=int, default=None,
+                   help="local worker processes (default: one per CPU; 1: run in this process)")
+    g.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="address of an existing dask scheduler, e.g. tcp://host:8786 "
+                        "(workers need hollowbody and this file system)")
+
+
+def parse_fixed(items: list[str], calibrated: list[str]) -> dict[str, float]:
+    """``['thickness=1.2']`` -> {'thickness': 1.2}; UserInputError on bad input."""
+    from hollowbody.calibrate.space import PARAMETERS
+
+    out: dict[str, float] = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if not sep:
+            raise UserInputError(f"bad --fix {item!r}: expected NAME=VALUE, e.g. thickness=1.2")
+        if name not in PARAMETERS:
+            raise UserInputError(f"unknown parameter {name!r} in --fix; choose from "
+                                 f"{', '.join(PARAMETERS)}")
+        if name in calibrated:
+            raise UserInputError(f"{name} is calibrated; it cannot also be fixed")
+        try:
+            v = float(value)
+        except ValueError:
+            raise UserInputError(f"bad --fix {item!r}: VALUE must be a number") from None
+        if not math.isfinite(v) or v < 0.0 or (name != "etan" and v == 0.0):
+            raise UserInputError(f"bad --fix {item!r}: VALUE must be positive")
+        out[name] = v
+    return out
+
+
+def check_positive(name: str, value: float | int | None, minimum: float = 1) -> None:
+    if value is not None and value < minimum:
+        raise UserInputError(f"{name} must be at least {minimum:g} (got {value})")
+
+
+def build_settings(args: argparse.Namespace):
+    """(CalibrationSettings, BlockSimulator) from the parsed options (UserInputError)."""
+    from hollowbody.calibrate import CalibrationSettings, FitnessSettings, GASettings
+    from hollowbody.calibrate.simulate import BlockSimulator
+    from hollowbody.calibrate.space import make_space, parse_bounds, parse_names, parse_speeds
+
+    speeds = parse_speeds(args.speeds)
+    names = parse_names(args.params)
+    space = make_space(names, parse_bounds(args.bounds))
+    fixed = parse_fixed(args.fix, names)
+    check_positive("--population", args.population, 2)
+    check_positive("--generations", args.generations, 1)
+    check_positive("--workers", args.workers, 1)
+    if args.end_time is not None and not args.end_time > 0.0:
+        raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
+    if args.cfc < 0.0:
+        raise UserInputError(f"--cfc must be >= 0 (got {args.cfc:g})")
+    sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed)
+    try:  # the block's own checks (mesh divides the block, ...)
+        sim.config("solid", speeds[0])
+        sim.config("hollow", speeds[0], space.rounded(space.lower))
+    except ValueError as exc:
+        raise UserInputError(str(exc)) from None
+    ga = GASettings(population=args.population, generations=args.generations, seed=args.seed)
+    fitness = FitnessSettings(cfc=args.cfc or None)
+    return CalibrationSettings(args.tissue, speeds, space, ga, fitness), sim
+
+
+def main(args: argparse.Namespace) -> int:
+    from hollowbody.calibrate.driver import CHECKPOINT, CalibrationError, calibrate
+    from hollowbody.calibrate.progress import make_progress
+    from hollowbody.calibrate.reference import ReferenceRunError
+    from hollowbody.calibrate.runner import make_runner
+    from hollowbody.report.calibration import WALL_UNITS, effective_wall, write_report
+
+    settings, sim = build_settings(args)
+    out: Path = args.out
+    if args.resume and not (out / CHECKPOINT).exists():
+        raise UserInputError(f"--resume: no checkpoint in {out} (nothing to resume)")
+    progress = make_progress(args.quiet)
+    try:
+        with make_runner(args.workers, args.scheduler) as runner:
+            if not args.quiet:
+                progress.message(f"calibrating the hollow {settings.tissue} block: "
+                                 f"{', '.join(settings.space.names)} at "
+                                 f"{', '.join(f'{s:g}' for s in settings.speeds)} km/h; "
+                                 f"evaluations on {runner.description}")
+            result = calibrate(settings, out, sim, runner=runner, resume=args.resume,
+                               progress=progress)
+    except (ReferenceRunError, CalibrationError) as exc:
+        import sys
+
+        print(f"hollowbody calibrate: {exc}", file=sys.stderr)
+        return EXIT_FAILED
+    files = write_report(out)
+    wall = effective_wall(result.data)
+    if wall is None:
+        print(f"no candidate ended normally; see {out / 'calibration.json'}")
+        return EXIT_FAILED
+    print("best: " + ", ".join(f"{k} {v:g} {WALL_UNITS[k]}" for k, v in wall.items())
+          + f"; fitness {result.best_fitness:.4g} ({len(result.evaluations)} evaluations, "
+          f"{result.runs_here} run now)")
+    print(f"outputs in {out}: " + ", ".join(p.name for p in files.values()))
+    return 0

@@ -1,0 +1,227 @@
+"""Report of a calibration: convergence and overlay plots, the best deck, Table 1.
+
+Everything is built from ``calibration.json`` and the run folders it names,
+so the report can be rebuilt from a finished (or interrupted) calibration::
+
+    from hollowbody.report.calibration import write_report
+    write_report("cal_muscle")
+
+Files (in the calibration folder):
+
+- ``convergence.png`` — best fitness so far and the mean fitness of the
+  normally terminated candidates, per generation (log scale);
+- ``overlay.png`` — solid reference vs best hollow force-displacement curve at
+  each speed (CFC-filtered lines over the raw curves; the paper's Fig. 2);
+- ``best_hollow/deck.k`` — the best candidate's hollow block deck at the first
+  speed (``deck_<speed>kmh.k`` for further speeds) and ``parameters.json``;
+- ``table1.md`` / ``table1.csv`` — like the paper's Table 1: solid bulk
+  modulus (MPa) and the calibrated hollow wall material (MPa, mm).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+
+from hollowbody.calibrate.fitness import smoothed
+from hollowbody.calibrate.reference import read_curve_csv
+from hollowbody.report.force_displacement import ForceDisplacement
+
+#: Hollow wall values used when a parameter is neither calibrated nor fixed (the block's).
+WALL_DEFAULTS = {"etan": 0.0, "thickness": 1.5}
+WALL_UNITS = {"E": "MPa", "yield": "MPa", "etan": "MPa", "thickness": "mm"}
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_convergence(history: list[dict], path: str | Path, title: str = "") -> None:
+    """Best-so-far and mean fitness per generation (PNG)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=120)
+    g = [h["generation"] for h in history]
+    best = [np.nan if h["best"] is None else h["best"] for h in history]
+    mean = [np.nan if h["mean"] is None else h["mean"] for h in history]
+    ax.plot(g, best, "o-", lw=1.8, label="best so far")
+    ax.plot(g, mean, "s--", lw=1.2, label="generation mean (normal terminations)")
+    failed = [h.get("failed", 0) for h in history]
+    if any(failed):
+        for gi, fi, bi in zip(g, failed, best):
+            if fi:
+                ax.annotate(f"{fi} failed", (gi, bi), textcoords="offset points",
+                            xytext=(0, -14), ha="center", fontsize=7)
+    positive = [v for v in best + mean if v == v and v > 0]
+    if positive:
+        ax.set_yscale("log")
+    ax.set_xlabel("generation")
+    ax.set_ylabel("fitness (normalised RMS force difference)")
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    if g:
+        ax.set_xticks(g if len(g) <= 20 else g[:: max(1, len(g) // 10)])
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def plot_overlay(pairs: list[tuple[float, ForceDisplacement, ForceDisplacement | None]],
+                 path: str | Path, cfc: float | None = 180.0, title: str = "") -> None:
+    """Solid vs hollow force-displacement, one panel per speed (PNG).
+
+    pairs: [(speed km/h, solid curve, hollow curve or None)].
+    """
+    plt = _plt()
+    n = max(1, len(pairs))
+    fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 4.4), dpi=120, squeeze=False)
+    for ax, (speed, solid, hollow) in zip(axes[0], pairs):
+        for curve, colour, name in ((solid, "C0", "solid"), (hollow, "C3", "hollow")):
+            if curve is None or curve.displacement.size < 2:
+                continue
+            ax.plot(curve.displacement, curve.force, color=colour, lw=0.5, alpha=0.35)
+            sm = smoothed(curve, cfc)
+            ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
+                    label=f"{name}{f' (CFC {cfc:g})' if cfc else ''}")
+        ax.set_xlabel("impactor displacement [mm]")
+        ax.set_ylabel("contact force [kN]")
+        ax.set_title(f"{speed:g} km/h")
+        ax.set_xlim(left=0.0)
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+    if title:
+        import textwrap
+
+        fig.suptitle(textwrap.fill(title, 55 * n), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def effective_wall(data: dict) -> dict[str, float] | None:
+    """Best wall parameters of a calibration with fixed/default values filled in."""
+    best = data.get("best_parameters")
+    if best is None:
+        return None
+    fixed = data.get("simulator", {}).get("fixed", {}) or {}
+    values = {**WALL_DEFAULTS, **fixed, **best}
+    return {k: float(values[k]) for k in WALL_UNITS if k in values}
+
+
+def table1_row(data: dict) -> dict:
+    """One Table 1 row (CSV field -> value) of a calibration's ``calibration.json`` data."""
+    from hollowbody.scenarios.tissues import tissue
+
+    t = tissue(data["tissue"])
+    wall = effective_wall(data) or {}
+    return {"tissue": data["tissue"], "body_part": t.name,
+            "solid_bulk_modulus_MPa": t.bulk_modulus * 1000.0,
+            "hollow_E_MPa": wall.get("E"), "hollow_yield_MPa": wall.get("yield"),
+            "hollow_etan_MPa": wall.get("etan"), "hollow_thickness_mm": wall.get("thickness"),
+            "fitness": data.get("best_fitness"),
+            "speeds_kmh": " ".join(f"{s:g}" for s in data["speeds_kmh"]),
+            "calibrated": " ".join(data["parameters"]),
+            "paper_hollow_E_MPa": t.hollow_E * 1000.0,
+            "paper_hollow_yield_MPa": t.hollow_yield * 1000.0}
+
+
+def _num(v: float | None, fmt: str = "{:.4g}") -> str:
+    return "n/a" if v is None else fmt.format(v)
+
+
+def write_table1(rows: list[dict], md_path: str | Path, csv_path: str | Path) -> None:
+    """Table 1 as Markdown (the paper's layout: a solid and a hollow row per tissue) and CSV."""
+    lines = ["| Structure | Material model | Body part | Linear bulk modulus [MPa] | "
+             "Young's modulus [MPa] | Yield stress [MPa] | Tangent modulus [MPa] | "
+             "Wall thickness [mm] | Fitness | Paper's fit E / yield [MPa] |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| Solid | Rubber (MAT_181) | {r['body_part']} | "
+                     f"{_num(r['solid_bulk_modulus_MPa'])} | / | / | / | / | / | / |")
+    for r in rows:
+        lines.append(f"| Hollow | Plastic (MAT_003) | {r['body_part']} | / | "
+                     f"{_num(r['hollow_E_MPa'])} | {_num(r['hollow_yield_MPa'])} | "
+                     f"{_num(r['hollow_etan_MPa'])} | {_num(r['hollow_thickness_mm'])} | "
+                     f"{_num(r['fitness'], '{:.3g}')} | {r['paper_hollow_E_MPa']:g} / "
+                     f"{r['paper_hollow_yield_MPa']:g} |")
+    notes = ", ".join(f"{r['tissue']}: calibrated {r['calibrated']} at {r['speeds_kmh']} km/h"
+                      for r in rows)
+    lines += ["", f"Hollow walls: 30 mm cells, elastic-plastic shells. {notes}. Parameters "
+              "not calibrated keep the block's values."]
+    Path(md_path).write_text("\n".join(lines) + "\n")
+    with open(csv_path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["tissue"])
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("" if v is None else v) for k, v in r.items()})
+
+
+def copy_best_deck(data: dict, out_dir: Path) -> Path | None:
+    """Copy the best run's deck(s) into ``out_dir/best_hollow``; returns deck.k or None."""
+    dirs = data.get("best_run_dirs") or []
+    if data.get("best_parameters") is None or not dirs:
+        return None
+    dest = out_dir / "best_hollow"
+    dest.mkdir(exist_ok=True)
+    first = None
+    for i, (speed, rd) in enumerate(zip(data["speeds_kmh"], dirs)):
+        src = Path(rd) / "deck.k" if rd else None
+        if src is None or not src.exists():
+            continue
+        target = dest / ("deck.k" if i == 0 else f"deck_{speed:g}kmh.k")
+        shutil.copyfile(src, target)
+        first = first or target
+    (dest / "parameters.json").write_text(json.dumps(
+        {"tissue": data["tissue"], "wall": effective_wall(data),
+         "units": WALL_UNITS,
+         "fitness": data.get("best_fitness"), "speeds_kmh": data["speeds_kmh"]}, indent=2))
+    return first
+
+
+def overlay_pairs(data: dict, out_dir: Path) -> list[tuple[float, ForceDisplacement,
+                                                         ForceDisplacement | None]]:
+    """[(speed, solid reference, best hollow or None)] from the calibration's folders."""
+    pairs = []
+    dirs = data.get("best_run_dirs") or []
+    for i, speed in enumerate(data["speeds_kmh"]):
+        ref = out_dir / "reference" / f"{speed:g}kmh" / "force_displacement.csv"
+        solid = read_curve_csv(ref, "solid") if ref.exists() else None
+        hollow = None
+        if i < len(dirs) and dirs[i]:
+            p = Path(dirs[i]) / "force_displacement.csv"
+            hollow = read_curve_csv(p, "hollow") if p.exists() else None
+        if solid is not None:
+            pairs.append((float(speed), solid, hollow))
+    return pairs
+
+
+def write_report(out_dir: str | Path) -> dict[str, Path]:
+    """Write every report file of the calibration in ``out_dir``; returns {name: path}."""
+    out = Path(out_dir)
+    data = json.loads((out / "calibration.json").read_text())
+    files: dict[str, Path] = {}
+    wall = effective_wall(data)
+    label = (", ".join(f"{k} {v:g} {WALL_UNITS[k]}" for k, v in wall.items()) if wall
+             else "no valid candidate")
+    plot_convergence(data["generations"], out / "convergence.png",
+                     title=f"calibration of the hollow {data['tissue']} block")
+    files["convergence"] = out / "convergence.png"
+    plot_overlay(overlay_pairs(data, out), out / "overlay.png", cfc=data["fitness"]["cfc"],
+                 title=f"{data['tissue']}: solid vs calibrated hollow ({label})")
+    files["overlay"] = out / "overlay.png"
+    deck = copy_best_deck(data, out)
+    if deck is not None:
+        files["deck"] = deck
+    write_table1([table1_row(data)], out / "table1.md", out / "table1.csv")
+    files["table1_md"] = out / "table1.md"
+    files["table1_csv"] = out / "table1.csv"
+    return files

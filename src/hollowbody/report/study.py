@@ -1,0 +1,153 @@
+"""Report of the efficiency and stability study: tables and force-displacement plots.
+
+Files written by :func:`write_study_report` in the study folder:
+
+- ``study.md`` / ``study.csv`` — one row per run: structure, speed (km/h),
+  status and reason, end time (ms), cycles, wall time (s), element counts,
+  peak force (kN; CFC-filtered and raw), maximum impactor displacement (mm);
+  the Markdown adds the solid/hollow wall-time ratio at every speed where
+  both runs ended normally;
+- ``fd_<speed>kmh.png`` — solid vs hollow at one speed;
+- ``fd_all.png`` — every curve (filtered), colour by speed, line style by
+  structure.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+from hollowbody.calibrate.fitness import smoothed
+from hollowbody.calibrate.study import load_curves
+
+COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",
+           "wall_seconds", "hexahedra", "shells", "peak_force_kN", "peak_force_raw_kN",
+           "max_displacement_mm")
+HEADERS = ("structure", "speed [km/h]", "status", "reason", "end time [ms]", "cycles",
+           "wall [s]", "hexahedra", "shells*", "peak force [kN] (CFC)", "peak force raw [kN]",
+           "max displacement [mm]")
+
+
+def _cell(v: object) -> str:
+    if v is None:
+        return "n/a"
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v).replace("|", "/")
+
+
+def wall_time_ratios(rows: list[dict]) -> dict[float, float]:
+    """{speed: solid wall s / hollow wall s} where both ended normally."""
+    by = {(r["structure"], r["speed_kmh"]): r for r in rows}
+    out = {}
+    for (st, v), r in sorted(by.items(), key=lambda kv: kv[0][1]):
+        if st != "solid":
+            continue
+        h = by.get(("hollow", v))
+        if (h and r["status"] == "normal termination" and h["status"] == "normal termination"
+                and r["wall_seconds"] and h["wall_seconds"]):
+            out[v] = r["wall_seconds"] / h["wall_seconds"]
+    return out
+
+
+def study_markdown(rows: list[dict], title: str = "Efficiency and stability study",
+                   cfc: float | None = 180.0) -> str:
+    """The study table in Markdown with the wall-time ratios and notes."""
+    lines = [f"## {title}", "", "| " + " | ".join(HEADERS) + " |",
+             "|" + "---|" * len(HEADERS)]
+    for r in rows:
+        lines.append("| " + " | ".join(_cell(r.get(c)) for c in COLUMNS) + " |")
+    ratios = wall_time_ratios(rows)
+    lines.append("")
+    if ratios:
+        lines.append("Solid/hollow wall-time ratio (both normal terminations): "
+                     + ", ".join(f"{v:g} km/h: {q:.2f}" for v, q in ratios.items()) + ".")
+    else:
+        lines.append("Solid/hollow wall-time ratio: no speed where both runs ended normally.")
+    filt = f"filtered with the SAE J211 CFC {cfc:g} filter" if cfc else "not filtered"
+    lines += ["", f"\\* shells include the rigid impactor's. Peak force (CFC) is the contact "
+              f"force {filt}; raw peaks include single-cycle contact spikes."]
+    return "\n".join(lines) + "\n"
+
+
+def write_study_csv(rows: list[dict], path: str | Path) -> None:
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow([*COLUMNS, "run_dir"])
+        for r in rows:
+            w.writerow(["" if r.get(c) is None else r.get(c) for c in (*COLUMNS, "run_dir")])
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_speed(rows: list[dict], curves: dict, speed: float, path: str | Path,
+               cfc: float | None = 180.0) -> None:
+    """Solid vs hollow at one speed (raw faint, filtered bold; status in the legend)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
+    status = {(r["structure"], r["speed_kmh"]): r["status"] for r in rows}
+    for st, colour in (("solid", "C0"), ("hollow", "C3")):
+        c = curves.get((st, speed))
+        if c is None or c.displacement.size < 2:
+            continue
+        ax.plot(c.displacement, c.force, color=colour, lw=0.5, alpha=0.35)
+        sm = smoothed(c, cfc)
+        ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
+                label=f"{st} ({status.get((st, speed), '?')})")
+    ax.set_xlabel("impactor displacement [mm]")
+    ax.set_ylabel("contact force [kN]")
+    ax.set_title(f"block test at {speed:g} km/h: solid vs hollow")
+    ax.set_xlim(left=0.0)
+    ax.grid(True, alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0) -> None:
+    """Every curve, filtered: colour by speed, solid line solid, dashed hollow."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
+    speeds = sorted({v for _, v in curves})
+    for (st, v), c in sorted(curves.items(), key=lambda kv: (kv[0][1], kv[0][0])):
+        if c.displacement.size < 2:
+            continue
+        sm = smoothed(c, cfc)
+        ax.plot(sm.displacement, sm.force, color=f"C{speeds.index(v)}",
+                ls="-" if st == "solid" else "--", lw=1.8, label=f"{st} {v:g} km/h")
+    ax.set_xlabel("impactor displacement [mm]")
+    ax.set_ylabel("contact force [kN]")
+    ax.set_title("block test: all force-displacement curves")
+    ax.set_xlim(left=0.0)
+    ax.grid(True, alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def write_study_report(rows: list[dict], out_dir: str | Path,
+                       cfc: float | None = 180.0) -> dict[str, Path]:
+    """Write study.md, study.csv and the plots into ``out_dir``; returns {name: path}."""
+    out = Path(out_dir)
+    files = {"table_md": out / "study.md", "table_csv": out / "study.csv"}
+    files["table_md"].write_text(study_markdown(rows, cfc=cfc))
+    write_study_csv(rows, files["table_csv"])
+    curves = load_curves(rows)
+    for v in sorted({r["speed_kmh"] for r in rows}):
+        p = out / f"fd_{v:g}kmh.png"
+        plot_speed(rows, curves, v, p, cfc)
+        files[f"fd_{v:g}kmh"] = p
+    plot_all(curves, out / "fd_all.png", cfc)
+    files["fd_all"] = out / "fd_all.png"
+    return files
