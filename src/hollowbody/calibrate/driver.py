@@ -247,7 +247,7 @@ def calibrate(settings: CalibrationSettings, out_dir: str | Path, simulator: Any
     reference failed), :class:`CalibrationError`, KeyboardInterrupt (after
     saving).
     """
-    out = Path(out_dir)
+    out = Path(out_dir).resolve()  # workers may run elsewhere: absolute run folders
     out.mkdir(parents=True, exist_ok=True)
     runner = runner or SerialRunner()
     progress = progress or CalibrationProgress()

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import time
 from contextlib import redirect_stderr, redirect_stdout
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any, Protocol
@@ -93,8 +93,12 @@ class BlockSimulator:
     simulated time (ms; None: the block's default); fixed: values of hollow
     parameters that are not calibrated ({name: value}, e.g. {'thickness': 1.2});
     options: further :class:`~hollowbody.scenarios.block.BlockConfig` fields
-    (e.g. {'friction': 0.1}); vtk: write ParaView states. The solver's console
-    output (warnings) goes to ``console.log`` in each run folder.
+    (e.g. {'friction': 0.1}); vtk: write ParaView states; dtmin: stop a run in
+    error termination when its time step falls below ``dtmin`` x the initial one
+    (*CONTROL_TERMINATION DTMIN; a collapsing hollow candidate would otherwise
+    crawl for hours), applied when the block test supports it (a ``dtmin``
+    field of BlockConfig). The solver's console output (warnings) goes to
+    ``console.log`` in each run folder.
     """
 
     tissue: str = "muscle"
@@ -103,20 +107,23 @@ class BlockSimulator:
     fixed: tuple[tuple[str, float], ...] = ()
     options: tuple[tuple[str, Any], ...] = ()
     vtk: bool = False
+    dtmin: float | None = 0.01
 
     @classmethod
     def make(cls, tissue: str = "muscle", mesh: float = 7.5, end_time: float | None = None,
              fixed: dict[str, float] | None = None, options: dict[str, Any] | None = None,
-             vtk: bool = False) -> BlockSimulator:
+             vtk: bool = False, dtmin: float | None = 0.01) -> BlockSimulator:
         """Build from dicts (kept as sorted tuples so the simulator is hashable)."""
         return cls(tissue, float(mesh), end_time, tuple(sorted((fixed or {}).items())),
-                   tuple(sorted((options or {}).items())), vtk)
+                   tuple(sorted((options or {}).items())), vtk, dtmin)
 
     def config(self, structure: str, speed_kmh: float, params: dict[str, float] | None = None):
         """The :class:`~hollowbody.scenarios.block.BlockConfig` of one run (ValueError if bad)."""
         from hollowbody.scenarios.block import BlockConfig
 
         kw: dict[str, Any] = dict(self.options)
+        if self.dtmin and "dtmin" in {f.name for f in fields(BlockConfig)}:
+            kw.setdefault("dtmin", self.dtmin)
         if structure == "hollow":
             values = {**dict(self.fixed), **(params or {})}
             for name, value in values.items():
@@ -168,6 +175,10 @@ class BlockSimulator:
         d["fixed"] = dict(self.fixed)
         d["options"] = dict(self.options)
         d.pop("vtk")
+        from hollowbody.scenarios.block import BlockConfig
+
+        if "dtmin" not in {f.name for f in fields(BlockConfig)}:
+            d["dtmin"] = None  # not supported by the block test: not applied
         d["elements_per_edge"] = elements_per_edge(self.mesh,
                                                    dict(self.options).get("cell", CELL_MM))
         return {"kind": "block", "hollowbody": package_version(), **d}

@@ -125,7 +125,7 @@ def run_study(simulator: Any, speeds: Sequence[float], out_dir: str | Path,
     paper's fit). warm_up: first compile the solver's kernels in every worker
     (``simulator.warm_up``, if it has one) so wall times exclude compilation.
     """
-    out = Path(out_dir)
+    out = Path(out_dir).resolve()  # workers may run elsewhere: absolute run folders
     out.mkdir(parents=True, exist_ok=True)
     runner = runner or SerialRunner()
     if warm_up and hasattr(simulator, "warm_up"):

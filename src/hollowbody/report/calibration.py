@@ -165,6 +165,22 @@ def write_table1(rows: list[dict], md_path: str | Path, csv_path: str | Path) ->
             w.writerow({k: ("" if v is None else v) for k, v in r.items()})
 
 
+def locate_run(run_dir: str | None, out_dir: Path) -> Path | None:
+    """A run folder recorded in calibration.json, also after the calibration folder moved
+    (the part from ``runs/`` on is looked up under ``out_dir``)."""
+    if not run_dir:
+        return None
+    p = Path(run_dir)
+    if p.exists():
+        return p
+    parts = p.parts
+    if "runs" in parts:
+        q = out_dir.joinpath(*parts[len(parts) - 1 - parts[::-1].index("runs"):])
+        if q.exists():
+            return q
+    return None
+
+
 def copy_best_deck(data: dict, out_dir: Path) -> Path | None:
     """Copy the best run's deck(s) into ``out_dir/best_hollow``; returns deck.k or None."""
     dirs = data.get("best_run_dirs") or []
@@ -174,7 +190,8 @@ def copy_best_deck(data: dict, out_dir: Path) -> Path | None:
     dest.mkdir(exist_ok=True)
     first = None
     for i, (speed, rd) in enumerate(zip(data["speeds_kmh"], dirs)):
-        src = Path(rd) / "deck.k" if rd else None
+        found = locate_run(rd, out_dir)
+        src = found / "deck.k" if found else None
         if src is None or not src.exists():
             continue
         target = dest / ("deck.k" if i == 0 else f"deck_{speed:g}kmh.k")
@@ -196,9 +213,9 @@ def overlay_pairs(data: dict, out_dir: Path) -> list[tuple[float, ForceDisplacem
         ref = out_dir / "reference" / f"{speed:g}kmh" / "force_displacement.csv"
         solid = read_curve_csv(ref, "solid") if ref.exists() else None
         hollow = None
-        if i < len(dirs) and dirs[i]:
-            p = Path(dirs[i]) / "force_displacement.csv"
-            hollow = read_curve_csv(p, "hollow") if p.exists() else None
+        found = locate_run(dirs[i], out_dir) if i < len(dirs) else None
+        if found is not None and (found / "force_displacement.csv").exists():
+            hollow = read_curve_csv(found / "force_displacement.csv", "hollow")
         if solid is not None:
             pairs.append((float(speed), solid, hollow))
     return pairs

@@ -18,6 +18,7 @@ computed is kept.
 
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -84,6 +85,9 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
                 f"{asm.element_counts()} ; end time {end_time:g} ms; erosion "
                 f"{'on' if erode else 'off'}")
+    for rt in asm.elements:
+        for w in getattr(rt, "warnings", []) or []:
+            outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
     loop = _Loop(model, asm, outputs, end_time, erode)
     status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
     try:
