@@ -71,7 +71,9 @@ def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
 
     Second-order Butterworth low-pass with the J211 pre-warped cut-off
     (design frequency 2.0775 * CFC Hz), applied forward and backward (zero
-    phase). Signals shorter than the filter's padding are returned unchanged.
+    phase). The signal is padded with its first and last values (a contact
+    force is zero before the impact), not mirrored, so a steep start does not
+    leave an offset. Signals shorter than 16 samples are returned unchanged.
     """
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -84,7 +86,7 @@ def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
     a0 = wa * wa / den
     b1 = -2.0 * (wa * wa - 1.0) / den
     b2 = (-1.0 + np.sqrt(2.0) * wa - wa * wa) / den
-    return filtfilt([a0, 2.0 * a0, a0], [1.0, -b1, -b2], y)
+    return filtfilt([a0, 2.0 * a0, a0], [1.0, -b1, -b2], y, padtype="constant")
 
 
 def uniform_in_time(curve: ForceDisplacement) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
