@@ -37,7 +37,7 @@ from hollowbody.units import kmh_to_mm_per_ms
 BLOCK_SIZE = (180.0, 180.0, 90.0)
 IMPACTOR_MASS = 5.0  # kg
 IMPACTOR_DIAMETER = 90.0  # mm
-IMPACTOR_SHELL_T = 1.0  # mm
+IMPACTOR_SHELL_T = 4.0  # mm: shell (and contact) thickness of the rigid impactor surface
 INITIAL_GAP = 0.1  # mm beyond the contact offset
 PID_TISSUE, PID_IMPACTOR = 1, 2
 CONTACT_ID = 1
