@@ -8,14 +8,16 @@ reads it back, runs it and extracts the force-displacement curve.
 
 Choices (all written into the deck):
 
-- the impactor is a rigid shell surface (*MAT_RIGID, 1 mm shells) whose
-  density gives 5 kg; it is guided along z (CMO=1, CON1=4 fixes x and y,
+- the impactor is a rigid shell surface (*MAT_RIGID, 4 mm shells: the
+  thickness is the contact thickness; with 1 mm the soft fat block's nodes
+  were pushed through the surface at 40 km/h) whose density gives 5 kg; it is guided along z (CMO=1, CON1=4 fixes x and y,
   CON2=7 fixes all rotations), as a guided impactor in a test rig;
 - contact *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE, tissue slave, impactor
   master, FS = FD = 0.2, SOFT=1 (stiffness from nodal mass and time step,
   robust for soft tissues whose bulk modulus spans 4.6-1000 MPa);
-- the impactor starts 0.1 mm above the top face (beyond the 0.5 mm contact
-  thickness offset of its shells);
+- the impactor starts 0.1 mm above the top face, beyond the contact
+  thickness offset (half the impactor shell thickness, plus half the wall
+  thickness for the hollow block);
 - hourglass control *HOURGLASS IHQ=4 (Flanagan-Belytschko stiffness),
   QH=0.05: the viscous form dissipates a large share of the impact energy in
   nearly incompressible rubber (measured: hourglass energy above internal
