@@ -10,8 +10,9 @@ Choices (all written into the deck):
 
 - the impactor is a rigid shell surface (*MAT_RIGID, 4 mm shells: the
   thickness is the contact thickness; with 1 mm the soft fat block's nodes
-  were pushed through the surface at 40 km/h) whose density gives 5 kg; it is guided along z (CMO=1, CON1=4 fixes x and y,
-  CON2=7 fixes all rotations), as a guided impactor in a test rig;
+  were pushed through the surface at 40 km/h) whose density gives 5 kg;
+  it is guided along z (CMO=1, CON1=4 fixes x and y, CON2=7 fixes all
+  rotations), as a guided impactor in a test rig;
 - contact *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE, tissue slave, impactor
   master, FS = FD = 0.2, SOFT=1 (stiffness from nodal mass and time step,
   robust for soft tissues whose bulk modulus spans 4.6-1000 MPa);
