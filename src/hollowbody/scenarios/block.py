@@ -75,6 +75,7 @@ class BlockConfig:
     elements_per_edge: int = 4
     mass_preserving: bool = True
     self_contact: bool = True
+    dtmin: float = 0.0  # *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off)
     output_dt: float = 0.02  # ms between history rows
     states: int = 25  # ParaView states over the run
     extra: dict = field(default_factory=dict)
@@ -179,7 +180,7 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=CONTACT_ID,
                      heading="tissue-impactor", ssid=ssid, sstyp=sstyp, msid=PID_IMPACTOR,
                      mstyp=3, fs=cfg.friction, fd=cfg.friction, soft=1))
-    deck.add(ControlTermination(endtim=end))
+    deck.add(ControlTermination(endtim=end, dtmin=cfg.dtmin))
     deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erode else 0))
     for name in ("GLSTAT", "RCFORC", "NODOUT", "SPCFORC", "MATSUM"):
         deck.add(DatabaseAscii(name=name, dt=cfg.output_dt))
