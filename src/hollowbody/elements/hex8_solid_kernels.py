@@ -242,12 +242,13 @@ def hex8_elastic_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hg
 
 @njit(cache=True, parallel=True, fastmath={"contract"})
 def hex8_rubber_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hgstate,
-                       fwork, dt_elem, c_elem, b0, fric, mp, ftab, gtab, hg, bounds, out):
+                       fwork, dt_elem, c_elem, b0, fric, eig, mp, ftab, gtab, hg, bounds, out):
     """Hexahedron + MAT_181 simplified rubber for one group.
 
     As :func:`hex8_elastic_kernel`, plus b0 (e, 8, 3) 1/mm reference uniform
     gradients (F = sum_a x_a (x) b0_a), fric (e, 6) GPa frictional damping
-    stress (may be (1, 6) when G = 0), mp packed MAT_181 parameters, ftab/gtab
+    stress (may be (1, 6) when G = 0), eig (e, 3, 3) eigenvectors of F F^T of the
+    last call (warm start of the eigen-solver), mp packed MAT_181 parameters, ftab/gtab
     (N,) GPa tables of f and its tangent.
     """
     bulk = mp[m181.P_BULK]
@@ -308,9 +309,17 @@ def hex8_rubber_kernel(conn, x, v, dt, alive, lfac, stress, volume, volume0, hgs
                 f20 += za * ba0
                 f21 += za * ba1
                 f22 += za * ba2
+            for i in range(3):
+                vec[i, 0] = eig[e, i, 0]
+                vec[i, 1] = eig[e, i, 1]
+                vec[i, 2] = eig[e, i, 2]
             t0, t1, t2, t3, t4, t5, gt = rubber_deviatoric(f00, f01, f02, f10, f11, f12,
                                                            f20, f21, f22, vec, ftab, gtab,
                                                            ln0, invd)
+            for i in range(3):
+                eig[e, i, 0] = vec[i, 0]
+                eig[e, i, 1] = vec[i, 1]
+                eig[e, i, 2] = vec[i, 2]
             jac = vol / volume0[e]
             rho = rho0 / jac
             l = vol ** _THIRD

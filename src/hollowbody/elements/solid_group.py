@@ -101,6 +101,9 @@ class SolidGroupRuntime:
         use_fric = (self.kind == "rubber181" and self._mp[m181.P_GF] > 0.0
                     and self._mp[m181.P_SIGF] > 0.0)
         self._fric = np.zeros((e if use_fric else 1, 6))
+        # eigenvectors of F F^T per element (warm start of the MAT_181 eigen-solver)
+        self._eig = np.zeros((e if self.kind == "rubber181" else 1, 3, 3))
+        self._eig[:, [0, 1, 2], [0, 1, 2]] = 1.0
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
         if ihq > 5:
@@ -147,7 +150,7 @@ class SolidGroupRuntime:
             hex8_rubber_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
                                self.stress, self.volume, self.volume0, self._hgstate,
                                self._fwork, self.dt_elem, self._c, self._b0, self._fric,
-                               self._mp, tab.f, tab.g, self._hg, self._bounds, out)
+                               self._eig, self._mp, tab.f, tab.g, self._hg, self._bounds, out)
         if self._gather is not None and numba.get_num_threads() > 1:
             self._gather.add(self._fwork, f)
         else:

@@ -111,8 +111,10 @@ def rubber_wave_speed0(params: np.ndarray) -> float:
 def rubber_deviatoric(f00, f01, f02, f10, f11, f12, f20, f21, f22, vec, ftab, gtab, ln0, invd):
     """Kernel: deviatoric Kirchhoff stress of the tabulated law.
 
-    f..: deformation gradient F (row i, column j); vec (3, 3) scratch (set to
-    the identity here; holds the eigenvectors of F F^T on return); ftab, gtab
+    f..: deformation gradient F (row i, column j); vec (3, 3): on entry an
+    orthonormal start basis for the eigen-solver (the identity, or the
+    element's eigenvectors of the previous step: then one or two Jacobi
+    sweeps suffice), on return the eigenvectors of F F^T; ftab, gtab
     (N,) GPa tables; ln0, invd: grid origin and inverse step. Returns
     (t0..t5, gt): tau' in Voigt order (GPa) and the largest current tangent
     shear modulus gt (GPa).
@@ -123,9 +125,6 @@ def rubber_deviatoric(f00, f01, f02, f10, f11, f12, f20, f21, f22, vec, ftab, gt
     b3 = f00 * f10 + f01 * f11 + f02 * f12
     b4 = f10 * f20 + f11 * f21 + f12 * f22
     b5 = f00 * f20 + f01 * f21 + f02 * f22
-    for i in range(3):
-        for j in range(3):
-            vec[i, j] = 1.0 if i == j else 0.0
     m0, m1, m2 = jacobi_eig3(b0, b1, b2, b3, b4, b5, vec)
     tiny = 1e-300
     l0 = math.log(max(m0, tiny))

@@ -14,6 +14,29 @@ import math
 from numba import njit
 
 
+@njit(cache=True, inline="always", fastmath={"contract"})
+def _rotation(app, aqq, apq):
+    """Jacobi rotation (t, c, s) that zeroes apq (t = tan of the angle).
+
+    Small angles (|apq| < 1e-3 |aqq - app|, the usual case with a warm start)
+    use the series t = r (1 - r^2), r = apq / (aqq - app), accurate to r^5, and
+    c = 1 - t^2/2 + 3 t^4/8: no square roots.
+    """
+    d = aqq - app
+    if abs(apq) < 1e-3 * abs(d):
+        r = apq / d
+        t = r * (1.0 - r * r)
+        t2 = t * t
+        c = 1.0 - t2 * (0.5 - 0.375 * t2)
+        return t, c, t * c
+    th = d / (2.0 * apq)
+    t = 1.0 / (abs(th) + math.sqrt(th * th + 1.0))
+    if th < 0.0:
+        t = -t
+    c = 1.0 / math.sqrt(t * t + 1.0)
+    return t, c, t * c
+
+
 @njit(cache=True, fastmath={"contract"})
 def jacobi_eig3(a0, a1, a2, a3, a4, a5, vec, tol=1e-14, max_sweeps=12):
     """Kernel: eigenvalues and eigenvectors of the symmetric matrix A.
@@ -52,12 +75,7 @@ def jacobi_eig3(a0, a1, a2, a3, a4, a5, vec, tol=1e-14, max_sweeps=12):
             break
         # pivot (0, 1)
         if abs(b01) > thr:
-            th = (b11 - b00) / (2.0 * b01)
-            t = 1.0 / (abs(th) + math.sqrt(th * th + 1.0))
-            if th < 0.0:
-                t = -t
-            c = 1.0 / math.sqrt(t * t + 1.0)
-            s = t * c
+            t, c, s = _rotation(b00, b11, b01)
             b00 -= t * b01
             b11 += t * b01
             b01 = 0.0
@@ -75,12 +93,7 @@ def jacobi_eig3(a0, a1, a2, a3, a4, a5, vec, tol=1e-14, max_sweeps=12):
             v20 = r0
         # pivot (0, 2)
         if abs(b02) > thr:
-            th = (b22 - b00) / (2.0 * b02)
-            t = 1.0 / (abs(th) + math.sqrt(th * th + 1.0))
-            if th < 0.0:
-                t = -t
-            c = 1.0 / math.sqrt(t * t + 1.0)
-            s = t * c
+            t, c, s = _rotation(b00, b22, b02)
             b00 -= t * b02
             b22 += t * b02
             b02 = 0.0
@@ -98,12 +111,7 @@ def jacobi_eig3(a0, a1, a2, a3, a4, a5, vec, tol=1e-14, max_sweeps=12):
             v20 = r0
         # pivot (1, 2)
         if abs(b12) > thr:
-            th = (b22 - b11) / (2.0 * b12)
-            t = 1.0 / (abs(th) + math.sqrt(th * th + 1.0))
-            if th < 0.0:
-                t = -t
-            c = 1.0 / math.sqrt(t * t + 1.0)
-            s = t * c
+            t, c, s = _rotation(b11, b22, b12)
             b11 -= t * b12
             b22 += t * b12
             b12 = 0.0

@@ -143,8 +143,8 @@ def test_rubber_params_warns_and_checks():
 def test_deviatoric_stress_is_traceless_and_coaxial():
     tab = build_rubber_table(Curve(1, STRAIN, MUSCLE))
     rng = np.random.default_rng(0)
-    vec = np.empty((3, 3))
     for _ in range(5):
+        vec = np.eye(3)
         f = np.eye(3) + rng.normal(scale=0.2, size=(3, 3))
         t = rubber_deviatoric(*f.ravel(), vec, tab.f, tab.g, tab.ln0, tab.inv_dln)
         tau = np.array([[t[0], t[3], t[5]], [t[3], t[1], t[4]], [t[5], t[4], t[2]]])
