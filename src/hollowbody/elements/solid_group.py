@@ -140,6 +140,9 @@ class SolidGroupRuntime:
         if self.n_elem == 0:
             return np.inf, -1, -1
         out = self._out
+        # dynamic scheduling of the chunks: the cost per element varies in space
+        # (contact zone, eigen-solver sweeps), a static split leaves threads idle
+        old_chunk = numba.set_parallel_chunksize(1)
         if self.kind == "elastic":
             hex8_elastic_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
                                 self.stress, self.volume, self.volume0, self._hgstate,
@@ -151,6 +154,7 @@ class SolidGroupRuntime:
                                self.stress, self.volume, self.volume0, self._hgstate,
                                self._fwork, self.dt_elem, self._c, self._b0, self._fric,
                                self._eig, self._mp, tab.f, tab.g, self._hg, self._bounds, out)
+        numba.set_parallel_chunksize(old_chunk)
         if self._gather is not None and numba.get_num_threads() > 1:
             self._gather.add(self._fwork, f)
         else:

@@ -6,6 +6,9 @@ characteristic length (V / A_max for hexahedra and wedges, the smallest
 altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
 length, ``c`` the material's current dilatational wave speed. The solver
 multiplies the minimum by TSSFAC (0.9). Units: mm, ms, mm/ms.
+
+This is an estimate, not a bound: for nearly incompressible materials on
+coarse free meshes the exact limit is about 0.85 of it (docs/elements.md).
 """
 
 from __future__ import annotations
