@@ -120,16 +120,11 @@ class BlockConfig:
 
 
 def _impactor(cfg: BlockConfig) -> tuple[np.ndarray, np.ndarray]:
+    """Impactor surface mesh; a zero edge radius is meshed as a 0.01 mm rounding."""
     if cfg.impactor == "sphere":
         return sphere_impactor_mesh(IMPACTOR_DIAMETER, h=4.0)
-    return cylinder_impactor_mesh(IMPACTOR_DIAMETER, max(cfg.edge_radius, 1e-6) if
-                                  cfg.edge_radius > 0 else 0.0, height=20.0, h=4.0) \
-        if cfg.edge_radius > 0 else _sharp_cylinder()
-
-
-def _sharp_cylinder() -> tuple[np.ndarray, np.ndarray]:
-    # a vanishing edge radius is meshed as a tiny rounding (0.01 mm)
-    return cylinder_impactor_mesh(IMPACTOR_DIAMETER, 0.01, height=20.0, h=4.0)
+    return cylinder_impactor_mesh(IMPACTOR_DIAMETER, max(cfg.edge_radius, 0.01), height=20.0,
+                                  h=4.0)
 
 
 def build_block_deck(cfg: BlockConfig):  # -> Deck

@@ -164,9 +164,8 @@ class _Loop:
         while self.t < self.end_time * (1.0 - 1e-12):
             dt_prev = self.dt
             dt = min(self.dt_next, self.end_time - self.t) if self.end_time > self.t else 0.0
-            dt_avg = dt if self.cycle == 0 else 0.5 * (dt_prev + dt)
-            if self.cycle == 0:
-                dt_avg = 0.5 * dt
+            # v^{1/2} = v^0 + dt/2 a^0 on the first cycle, then the mean of both steps
+            dt_avg = 0.5 * dt if self.cycle == 0 else 0.5 * (dt_prev + dt)
             self.dt = dt
             self._advance(dt, dt_avg)
             self.t += dt
@@ -198,14 +197,12 @@ class _Loop:
             self.w += dt_avg * self.mom * self.inv_i[:, None]
             self.w[self.constraints.fixed_rot] = 0.0
         for body in self.asm.bodies:
-            vel0, om0 = body.vel.copy(), body.omega.copy()
             body.advance_velocity(dt_avg)
             free_v, free_w = body.vel.copy(), body.omega.copy()
             self.constraints.apply_rigid(self.t, dt)
             # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
             self.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
             self.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
-            del vel0, om0
         self.constraints.apply_nodes(v, x, self.t, dt)
         pn = self.constraints.prescribed_nodes
         if pn.size:

@@ -78,6 +78,7 @@ class RunOutputs:
         self.matsum = HistoryWriter(self.out / "matsum.csv", [
             "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"])
         self.last_energies: dict[str, float] = {}
+        self._last_forced: tuple[int, float] | None = None
 
     # -- logging ---------------------------------------------------------------
     def log(self, message: str, level: int = logging.INFO) -> None:
@@ -85,6 +86,10 @@ class RunOutputs:
 
     # -- per cycle ----------------------------------------------------------------
     def record(self, loop, force: bool = False) -> None:
+        if force and self._last_forced == (loop.cycle, loop.t):
+            return  # already written at this very state (end of run after a forced row)
+        if force:
+            self._last_forced = (loop.cycle, loop.t)
         t = loop.t
         if self.clocks["glstat"].due(t) or force:
             e = loop.energies()
@@ -119,11 +124,8 @@ class RunOutputs:
             self.write_state(loop)
 
     def _part_energies(self, loop) -> tuple[dict[int, float], dict[int, tuple[float, int]]]:
-        v = loop.node_velocity_full_step()
-        energy: dict[int, float] = {}
+        energy = self._part_kinetic(loop)
         hg: dict[int, tuple[float, int]] = {}
-        for pid, share in self.asm.part_share.items():
-            energy[pid] = 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
         for rt in self.asm.elements:
             energy[rt.pid] = energy.get(rt.pid, 0.0) + rt.internal_energy + rt.hourglass_energy
             eid = -1
@@ -133,16 +135,20 @@ class RunOutputs:
             hg[rt.pid] = (rt.hourglass_energy, eid)
         return energy, hg
 
-    def _write_matsum(self, loop) -> None:
+    def _part_kinetic(self, loop) -> dict[int, float]:
+        """Kinetic energy (J) per part: rigid bodies exactly, other parts from their
+        share of the lumped nodal masses at full-step velocities."""
         v = loop.node_velocity_full_step()
-        by_pid = {rt.pid: rt for rt in self.asm.elements}
         bodies = {b.pid: b for b in self.asm.bodies}
+        return {pid: bodies[pid].kinetic_energy() if pid in bodies else
+                0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
+                for pid, share in self.asm.part_share.items()}
+
+    def _write_matsum(self, loop) -> None:
+        by_pid = {rt.pid: rt for rt in self.asm.elements}
+        kinetic = self._part_kinetic(loop)
         for pid in sorted(self.asm.part_share):
-            share = self.asm.part_share[pid]
-            if pid in bodies:
-                ke = bodies[pid].kinetic_energy()
-            else:
-                ke = 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
+            ke = kinetic[pid]
             rt = by_pid.get(pid)
             ie = rt.internal_energy if rt is not None else 0.0
             hg = rt.hourglass_energy if rt is not None else 0.0
