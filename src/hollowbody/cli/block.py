@@ -42,6 +42,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--cell", type=float, default=30.0, help="cell size in mm")
     g.add_argument("--elements-per-edge", type=int, default=4,
                    help="shell elements along a cell edge")
+    g.add_argument("--imperfection", type=float, default=None,
+                   help="amplitude in mm of the walls' buckling-mode offsets (default 0.1 x "
+                        "thickness; 0 gives flat walls)")
     g.add_argument("--no-mass-preserving", action="store_true",
                    help="walls keep the tissue density instead of the solid block's mass")
     p.add_argument("--compare", action="store_true",
@@ -66,6 +69,7 @@ def main(args: argparse.Namespace) -> int:
                           hollow_E=args.hollow_E, hollow_yield=args.hollow_yield,
                           hollow_etan=args.etan, thickness=args.thickness, cell=args.cell,
                           elements_per_edge=args.elements_per_edge,
+                          imperfection=args.imperfection,
                           mass_preserving=not args.no_mass_preserving)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None

@@ -130,7 +130,7 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH)
 def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta,
                    wts, kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte,
-                   die, dhe, stress_out, pmax):
+                   die, dhe, stress_out, pmax, nrm, area0, flip):
     """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
 
     x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
@@ -147,6 +147,11 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
     Outputs: fe (e,4,6) kN, kN*mm forces and moments on the element's nodes;
     dte (e,) ms critical steps (inf for dead elements); die, dhe (e,) J energy
     increments; stress_out (e,6) GPa global; pmax (e,) max eps_p over points.
+    nrm (e,3) unit normal of the last call (in/out); area0 (e,) mm^2 initial
+    areas; flip (e,) uint8 out: 1 when the element collapsed in its own plane:
+    its area fell below ``COLLAPSED_AREA`` x its initial area, or its normal
+    turned by more than 90 degrees in one step (crushed through zero area,
+    inside out; the stored normal is then kept). The solver stops or erodes it.
     """
     nip = zeta.shape[0]
     shrf = kp[K_SHRF]
@@ -164,6 +169,7 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
     fail = mp[P_FAIL]
     hdt = 0.5 * dt
     for i in range(lo, hi):
+        flip[i] = 0
         if not alive[i]:
             for a in range(4):
                 for j in range(6):
@@ -410,11 +416,24 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
                 fe[i, j, 3 + c] = -(mx * e1[c] + my * e2[c] + gmx * e1h[c] + gmy * e2h[c]
                                     + gmz * e3h[c])
         dte[i] = characteristic_length(xl, yl, a, tri[i]) / c_wave
+        if (a < COLLAPSED_AREA * area0[i]
+                or e3[0] * nrm[i, 0] + e3[1] * nrm[i, 1] + e3[2] * nrm[i, 2] < 0.0):
+            flip[i] = 1
+        else:
+            nrm[i, 0] = e3[0]
+            nrm[i, 1] = e3[1]
+            nrm[i, 2] = e3[2]
         it = 1.0 / t
         s6 = _rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
         for j in range(6):
             stress_out[i, j] = s6[j]
 
+
+#: An element whose area fell below this fraction of its initial area has
+#: collapsed in its own plane (an in-plane strain of -99 %: a shell can no
+#: longer represent it; its step is ~1/100 of the initial one). The solver
+#: treats it as a solid's negative volume: error termination, or erosion.
+COLLAPSED_AREA = 0.01
 
 #: Elements per parallel chunk; groups smaller than PARALLEL_MIN run serially
 #: (thread start-up costs more than it saves on a few hundred shells).
@@ -425,23 +444,24 @@ PARALLEL_MIN = 2048
 @njit(cache=True, parallel=True)
 def _bt_shell_parallel(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts,
                        kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe,
-                       dte, die, dhe, stress_out, pmax):
+                       dte, die, dhe, stress_out, pmax, nrm, area0, flip):
     ne = conn.shape[0]
     nchunk = (ne + CHUNK - 1) // CHUNK
     for c in prange(nchunk):
         bt_shell_range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, conn, alive, tri,
                        thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx, hy, rx, ry, sig,
-                       epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out, pmax)
+                       epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out, pmax,
+                       nrm, area0, flip)
 
 
 def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp,
                     mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die,
-                    dhe, stress_out, pmax) -> None:
+                    dhe, stress_out, pmax, nrm, area0, flip) -> None:
     """Every element of a group (arguments as :func:`bt_shell_range`): chunks over
     threads for large groups, one serial call for small ones."""
     args = (x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx,
             hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out,
-            pmax)
+            pmax, nrm, area0, flip)
     if conn.shape[0] >= PARALLEL_MIN:
         _bt_shell_parallel(*args)
     else:

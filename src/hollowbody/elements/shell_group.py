@@ -57,11 +57,15 @@ DEFAULT_DRILLING = 0.1
 SUPPORTED_ELFORM = (0, 2)
 
 
-def _quad_geometry(conn: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Areas (e,) mm^2 (half the diagonal cross product) and triangle flags (e,) bool."""
+def _quad_geometry(conn: np.ndarray, x: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Areas (e,) mm^2 (half the diagonal cross product), triangle flags (e,)
+    bool and unit normals (e,3) (the Belytschko-Tsay e3 direction)."""
     xe = x[conn]
     n = np.cross(xe[:, 2] - xe[:, 0], xe[:, 3] - xe[:, 1])
-    return 0.5 * np.linalg.norm(n, axis=1), conn[:, 2] == conn[:, 3]
+    norm = np.linalg.norm(n, axis=1)
+    unit = n / np.where(norm > 0.0, norm, 1.0)[:, None]
+    return 0.5 * norm, conn[:, 2] == conn[:, 3], unit
 
 
 class ShellGroupRuntime:
@@ -116,7 +120,7 @@ class ShellGroupRuntime:
         self.thickness_strain = np.zeros(e)
         self.thickness_update = bool(thickness_update)
         x0 = np.asarray(node_x0, dtype=np.float64)
-        area, self.triangle = _quad_geometry(self.conn, x0)
+        area, self.triangle, normal = _quad_geometry(self.conn, x0)
         self.area0 = area
         rho = self.material.density
         self.mass = rho * area * self.t0
@@ -150,6 +154,10 @@ class ShellGroupRuntime:
         self.drilling = float(drilling)
         self.stress = np.zeros((e, 6))
         self.plastic_strain = np.zeros(e)
+        self.normal = np.ascontiguousarray(normal)
+        #: (e,) uint8: 1 for elements turned inside out in the last call (see
+        #: :attr:`inverted`)
+        self.flip = np.zeros(e, dtype=np.uint8)
         self.internal_energy = 0.0
         self.hourglass_energy = 0.0
         # work arrays, allocated once
@@ -202,8 +210,11 @@ class ShellGroupRuntime:
         x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}
         (w None: no rotations); dt ms (0 allowed). Adds forces on the nodes
         (kN) into f (n,3) and moments (kN*mm) into moment (n,3) when given.
-        Returns ``(dt_crit ms, index in group, -1)``: the smallest unscaled
-        critical step over live elements and its element (inf, -1 when none).
+        Returns ``(dt_crit ms, index in group, inverted)``: the smallest
+        unscaled critical step over live elements and its element (inf, -1 when
+        none), and the index of the first element that collapsed in its plane
+        this call (area below 1 % of the initial, or inside out: the shell
+        counterpart of a solid's negative volume; -1 when none).
         """
         if w is None:
             if self._wzero.shape[0] != v.shape[0]:
@@ -217,7 +228,8 @@ class ShellGroupRuntime:
                         self.zeta, self.weights, self._controls, self.params, self.hard_x,
                         self.hard_y, self.rate_x, self.rate_y, self.sig, self.epsp, self.back,
                         self.pfail, self.tau, self.hgq, self.drill, self._fe, self._dte,
-                        self._die, self._dhe, self.stress, self.plastic_strain)
+                        self._die, self._dhe, self.stress, self.plastic_strain, self.normal,
+                        self.area0, self.flip)
         gather_node_forces(self._fe, self._nodes, self._ptr, self._ref, f, mom, with_moment)
         self.internal_energy += float(self._die.sum())
         self.hourglass_energy += float(self._dhe.sum())
@@ -225,11 +237,17 @@ class ShellGroupRuntime:
             self._record_failures()
         if self.n_elem == 0:
             return np.inf, -1, -1
+        inv = int(np.argmax(self.flip)) if self.flip.any() else -1
         i = int(np.argmin(self._dte))
         d = float(self._dte[i])
         if not np.isfinite(d):
-            return np.inf, -1, -1
-        return d, i, -1
+            return np.inf, -1, inv
+        return d, i, inv
+
+    @property
+    def inverted(self) -> np.ndarray:
+        """(e,) bool: live elements that collapsed in their plane in the last call."""
+        return (self.flip > 0) & self.alive
 
     def _record_failures(self) -> None:
         known = set(self.failed)
@@ -244,6 +262,11 @@ class ShellGroupRuntime:
         self.stress[idx] = 0.0
         self._fe[idx] = 0.0
         self._dte[idx] = np.inf
+
+    @property
+    def dt_elem(self) -> np.ndarray:
+        """(e,) ms unscaled critical step of each element at the last call (inf: deleted)."""
+        return self._dte
 
     # -- output helpers ------------------------------------------------------------
     def point_stress(self) -> np.ndarray:

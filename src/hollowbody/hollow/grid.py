@@ -8,6 +8,17 @@ lattice of spacing ``cell / elements_per_edge``.
 
 Walls are grouped by orientation (normal along x, y or z), so each
 orientation can be its own part.
+
+Perfectly flat walls loaded in their own plane have no reason to buckle: the
+discrete model crushes them in-plane (elements shorten to slivers, the time
+step collapses) where a real wall, or the same model with the smallest
+asymmetry, folds. ``imperfection`` gives every wall panel (one cell face) an
+out-of-plane offset shaped like its first buckling mode,
+``a sin(pi u / c) sin(pi v / c)`` (u, v in-panel coordinates, c the cell
+size), with the sign alternating between neighbouring panels (checkerboard),
+as the buckling modes of a stiffened wall grid alternate. The offset is zero
+on every cell edge, so the walls still meet on straight, shared lines and the
+grid stays conforming.
 """
 
 from __future__ import annotations
@@ -45,16 +56,20 @@ class HollowGrid:
 
 
 def hollow_box(size: tuple[float, float, float], cell: float = 30.0, thickness: float = 1.5,
-               elements_per_edge: int = 4, origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
-               ) -> HollowGrid:
+               elements_per_edge: int = 4, origin: tuple[float, float, float] = (0.0, 0.0, 0.0),
+               imperfection: float = 0.0) -> HollowGrid:
     """Walls of a box of ``size`` (mm) divided into cubic cells of edge ``cell``.
 
     ``cell`` must divide every side; walls on every cell face including the
-    outer ones. ``origin`` is the box's minimum corner. ValueError for sizes
-    the cell does not divide or fewer than one element per edge.
+    outer ones. ``origin`` is the box's minimum corner. ``imperfection`` is
+    the amplitude (mm) of the out-of-plane panel offsets (module docstring;
+    0 gives flat walls). ValueError for sizes the cell does not divide, fewer
+    than one element per edge or an imperfection not smaller than the cell.
     """
     if elements_per_edge < 1:
         raise ValueError("elements_per_edge must be at least 1")
+    if not 0.0 <= imperfection < 0.5 * cell:
+        raise ValueError(f"imperfection must be in [0, cell/2) (got {imperfection:g} mm)")
     cells = []
     for s in size:
         k = s / cell
@@ -73,6 +88,9 @@ def hollow_box(size: tuple[float, float, float], cell: float = 30.0, thickness: 
     index[used] = np.arange(int(used.sum()))
     pts = np.column_stack([ii[used], jj[used], ll[used]]).astype(np.float64) * h
     nodes = pts + np.asarray(origin, dtype=np.float64)
+    if imperfection > 0.0:
+        lat = np.column_stack([ii[used], jj[used], ll[used]])
+        nodes += panel_offsets(lat, k, imperfection)
 
     quads, orient = [], []
     for axis in range(3):
@@ -93,3 +111,24 @@ def hollow_box(size: tuple[float, float, float], cell: float = 30.0, thickness: 
             orient.append(np.full(q.shape[0], axis, dtype=np.int8))
     return HollowGrid(nodes=nodes, quads=np.vstack(quads), orientation=np.concatenate(orient),
                       cell=cell, thickness=thickness)
+
+
+def panel_offsets(lattice: np.ndarray, k: int, amplitude: float) -> np.ndarray:
+    """Out-of-plane offsets (n, 3) mm of panel-interior lattice points.
+
+    lattice (n, 3) int lattice indices (spacing cell / k); a point lies on
+    the wall plane normal to ``axis`` when its index along ``axis`` is a
+    multiple of k, and inside that panel when neither in-plane index is. Its
+    offset along ``axis`` is ``amplitude sin(pi r_a / k) sin(pi r_b / k)``
+    (r the in-cell remainders) times the checkerboard sign of the panel.
+    """
+    off = np.zeros(lattice.shape, dtype=np.float64)
+    rem = lattice % k
+    cellidx = lattice // k
+    for axis in range(3):
+        a, b = [ax for ax in range(3) if ax != axis]
+        inside = (rem[:, axis] == 0) & (rem[:, a] != 0) & (rem[:, b] != 0)
+        sign = np.where((cellidx[:, axis] + cellidx[:, a] + cellidx[:, b]) % 2 == 0, 1.0, -1.0)
+        shape = np.sin(np.pi * rem[:, a] / k) * np.sin(np.pi * rem[:, b] / k)
+        off[inside, axis] = (amplitude * sign * shape)[inside]
+    return off

@@ -73,6 +73,7 @@ class BlockConfig:
     thickness: float = 1.5  # mm
     cell: float = 30.0  # mm
     elements_per_edge: int = 4
+    imperfection: float | None = None  # mm panel buckling-mode offset; None -> 0.1 thickness
     mass_preserving: bool = True
     self_contact: bool = True
     dtmin: float = 0.0  # *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off)
@@ -229,7 +230,9 @@ def _add_hollow_block(deck, cfg: BlockConfig):
     t = tissue(cfg.tissue)
     g = hollow_box(BLOCK_SIZE, cell=cfg.cell, thickness=cfg.thickness,
                    elements_per_edge=cfg.elements_per_edge,
-                   origin=(-BLOCK_SIZE[0] / 2, -BLOCK_SIZE[1] / 2, 0.0))
+                   origin=(-BLOCK_SIZE[0] / 2, -BLOCK_SIZE[1] / 2, 0.0),
+                   imperfection=(0.1 * cfg.thickness if cfg.imperfection is None
+                                 else cfg.imperfection))
     solid_mass = t.density * BLOCK_SIZE[0] * BLOCK_SIZE[1] * BLOCK_SIZE[2]
     rho = g.density_for_mass(solid_mass) if cfg.mass_preserving else t.density
     e, y, etan = hollow_material(cfg)

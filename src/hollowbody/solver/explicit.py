@@ -258,8 +258,12 @@ class _Loop:
                     self.asm.tssfac * d < self.dtmin_abs
                 if neg >= 0 and not self.erode:
                     eid = int(rt.elem_ids[neg])
-                    raise _Terminate(ERROR, f"negative volume in solid element {eid} "
-                                     f"(part {rt.pid}) at t={self.t:.6g} ms",
+                    if getattr(rt, "rotational", False):
+                        what = (f"shell element {eid} (part {rt.pid}) collapsed in its plane "
+                                "(area below 1% of the initial, or inside out)")
+                    else:
+                        what = f"negative volume in solid element {eid} (part {rt.pid})"
+                    raise _Terminate(ERROR, f"{what} at t={self.t:.6g} ms",
                                      element=eid, part=rt.pid)
                 if (neg >= 0 or small) and self._erode(rt, small):
                     restart = True
@@ -278,18 +282,24 @@ class _Loop:
         return d * getattr(rt, "step_factor", 1.0), i, neg
 
     def _erode(self, rt, small_step: bool) -> int:
-        """Delete the elements of ``rt`` whose volume is <= 0 (and, with
+        """Delete the elements of ``rt`` whose volume is <= 0 (solids) and, with
         ``small_step``, those whose step is below DTMIN x initial step, as
-        LS-DYNA's ERODE=1 does). Returns how many were deleted."""
-        bad = (rt.volume <= 0.0) & rt.alive
-        why = "negative volume"
+        LS-DYNA's ERODE=1 does (solids and shells). Returns how many were deleted."""
+        volume = getattr(rt, "volume", None)
+        if volume is not None:
+            bad = (volume <= 0.0) & rt.alive
+            why = "negative volume"
+        else:  # shells: collapsed in their plane
+            bad = rt.inverted.copy()
+            why = "collapsed in its plane"
         if small_step:
             bad |= (self.asm.tssfac * getattr(rt, "step_factor", 1.0) * rt.dt_elem
                     < self.dtmin_abs) & rt.alive
-            why = "negative volume or time step below DTMIN"
+            why = f"{why} or time step below DTMIN"
         bad = np.nonzero(bad)[0]
+        kind = "solid" if volume is not None else "shell"
         for i in bad:
-            self.out.log(f"erosion: solid element {int(rt.elem_ids[i])} (part {rt.pid}) "
+            self.out.log(f"erosion: {kind} element {int(rt.elem_ids[i])} (part {rt.pid}) "
                          f"deleted at t={self.t:.6g} ms ({why})")
         self.n_eroded += int(bad.size)
         if bad.size:

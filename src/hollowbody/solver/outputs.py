@@ -156,7 +156,7 @@ class RunOutputs:
 
     def write_state(self, loop) -> None:
         cells, data = [], {"part": [], "element": [], "alive": [], "stress [GPa]": [],
-                           "von_mises [GPa]": []}
+                           "von_mises [GPa]": [], "plastic_strain": []}
         runtimes = {rt.pid: rt for rt in self.asm.elements}
         for g in self.model.solid_groups:
             self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
@@ -181,6 +181,11 @@ class RunOutputs:
         data["alive"].append((np.ones(e) if alive is None else alive).astype(np.int8))
         data["stress [GPa]"].append(np.asarray(stress, dtype=np.float64))
         data["von_mises [GPa]"].append(von_mises(stress))
+        # effective plastic strain (shells: largest over the integration points)
+        eps = getattr(rt, "plastic_strain", None)
+        if eps is None or np.shape(eps) != (e,):
+            eps = np.zeros(e)
+        data["plastic_strain"].append(np.asarray(eps, dtype=np.float64))
 
     # -- end -------------------------------------------------------------------
     def finish(self, loop, status: str, reason: str, where: dict, wall: float) -> dict:

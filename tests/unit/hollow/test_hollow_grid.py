@@ -41,3 +41,32 @@ def test_mass_preserving_density():
 def test_bad_cell_size():
     with pytest.raises(ValueError, match="does not divide"):
         hollow_box((100.0, 90.0, 90.0), cell=30.0)
+
+
+def test_imperfection_is_a_checkerboard_of_panel_buckling_modes():
+    a = 0.3
+    flat = hollow_box((60.0, 60.0, 30.0), cell=30.0, elements_per_edge=4)
+    g = hollow_box((60.0, 60.0, 30.0), cell=30.0, elements_per_edge=4, imperfection=a)
+    d = g.nodes - flat.nodes
+    # nodes on cell edges (where walls meet) do not move: the grid stays conforming
+    on_edge = (np.isclose(np.mod(flat.nodes, 30.0), 0.0).sum(axis=1) >= 2)
+    assert np.allclose(d[on_edge], 0.0)
+    # panel-interior nodes move only along their wall's normal, by a sin(pi u/c) sin(pi v/c)
+    inner = ~on_edge
+    assert (np.count_nonzero(d[inner], axis=1) == 1).all()
+    amp = np.abs(d[inner]).max(axis=1)
+    assert amp.max() == pytest.approx(a)  # panel centre (u = v = c/2)
+    assert amp.min() == pytest.approx(a * np.sin(np.pi / 4) ** 2)
+    # neighbouring panels of one wall bulge to opposite sides
+    x = flat.nodes
+    centre = inner & np.isclose(x[:, 2], 0.0) & np.isclose(np.mod(x[:, 0], 30.0), 15.0) \
+        & np.isclose(np.mod(x[:, 1], 30.0), 15.0)
+    signs = np.sign(d[centre, 2])
+    assert sorted(signs.tolist()) == [-1.0, -1.0, 1.0, 1.0]
+    # the wall area (and so the mass-preserving density) barely changes
+    assert g.wall_area == pytest.approx(flat.wall_area, rel=1e-3)
+
+
+def test_bad_imperfection():
+    with pytest.raises(ValueError, match="imperfection"):
+        hollow_box((60.0, 60.0, 30.0), cell=30.0, imperfection=20.0)

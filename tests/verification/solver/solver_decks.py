@@ -109,3 +109,33 @@ def crushed_column(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float =
     deck.add(ControlTimestep(tssfac=0.9, erode=erode))
     deck.add(DatabaseAscii(name="GLSTAT", dt=end / 100))
     return deck
+
+
+def crushed_strip(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float = 1.0,
+                  erode: int = 0, dtmin: float = 0.0) -> Deck:
+    """A vertical strip of n square shells (edge h, in the xz plane, part 8,
+    elastic-plastic MAT_003), bottom nodes fixed, top nodes driven down by
+    ``crush`` mm over ``end`` ms: crushed in its own plane, elements collapse."""
+    from hollowbody.io.keyword import MatPlasticKinematic
+
+    zs = np.arange(n + 1) * h
+    x = np.array([[xx, 0.0, z] for z in zs for xx in (0.0, h)])
+    ids = np.arange(1, x.shape[0] + 1)
+    quads = np.array([[2 * k, 2 * k + 1, 2 * k + 3, 2 * k + 2] for k in range(n)])
+    deck = Deck()
+    deck.title = "crushed shell strip"
+    deck.add_nodes(ids, x)
+    deck.add_shells(np.arange(1, n + 1), 8, ids[quads], thickness=1.0)
+    deck.add(Part(pid=8, secid=1, mid=1, title="strip"))
+    deck.add(SectionShell(secid=1, elform=2, nip=5, t1=1.0))
+    deck.add(MatPlasticKinematic(mid=1, ro=1.0e-6, e=0.1, pr=0.3, sigy=0.004, etan=0.0,
+                                 beta=1.0))
+    deck.add(SetNodeList(sid=1, nodes=ids[x[:, 2] < 1e-9].tolist()))
+    deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1, dofrx=1, dofry=1, dofrz=1))
+    deck.add(SetNodeList(sid=2, nodes=ids[x[:, 2] > n * h - 1e-9].tolist()))
+    deck.add(DefineCurve(lcid=1, points=[[0.0, 0.0], [end, -crush]]))
+    deck.add(PrescribedMotionSet(nsid=2, dof=3, vad=2, lcid=1))
+    deck.add(ControlTermination(endtim=end, dtmin=dtmin))
+    deck.add(ControlTimestep(tssfac=0.9, erode=erode))
+    deck.add(DatabaseAscii(name="GLSTAT", dt=end / 100))
+    return deck

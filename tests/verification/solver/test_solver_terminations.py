@@ -11,7 +11,7 @@ import json
 
 import numpy as np
 import pytest
-from solver_decks import crushed_column, cube_and_plate
+from solver_decks import crushed_column, crushed_strip, cube_and_plate
 
 from hollowbody.api import run_model
 from hollowbody.io.results.history import read_history
@@ -62,6 +62,30 @@ def test_erode_deletes_elements_and_goes_on(tmp_path):
     assert res.summary["eroded_elements"] >= 1
     assert res.summary["end_time_ms"] > 0.45  # went on past the first deletion
     assert "erosion: solid element" in (tmp_path / "messages.log").read_text()
+
+
+def test_shell_collapse_is_an_error_termination(tmp_path):
+    """A shell strip crushed in its own plane: the first element whose area falls
+    below 1 % of its initial area ends the run, named, with its part and time.
+    The strip is 15 mm high and crushed at 30 mm/ms, so some element must have
+    collapsed before t = 0.5 ms; with the top nodes prescribed, the top element
+    alone cannot reach 1 % before its top has moved 0.99 h (t >= 0.165 ms)."""
+    res = _run(crushed_strip(crush=30.0, end=1.0), tmp_path)
+    assert res.status == "error termination"
+    assert "shell element" in res.reason and "collapsed in its plane" in res.reason
+    assert "(part 8)" in res.reason
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["error_part"] == 8 and s["error_element"] in (1, 2, 3)
+    assert s["end_time_ms"] <= 0.5
+    assert len(read_history(tmp_path / "glstat.csv")["time [ms]"]) > 2
+
+
+def test_erode_deletes_collapsed_shells_and_goes_on(tmp_path):
+    res = _run(crushed_strip(crush=30.0, end=1.0, erode=1), tmp_path)
+    assert res.summary["eroded_elements"] >= 1
+    log = (tmp_path / "messages.log").read_text()
+    assert "erosion: shell element" in log and "collapsed in its plane" in log
+    assert res.summary["end_time_ms"] == pytest.approx(1.0)
 
 
 def test_dtmin_ends_the_run(tmp_path):
