@@ -1,6 +1,6 @@
 """Editing a keyword deck without touching the input: a copy of the include tree, free id
-ranges above the deck's maxima, the node references of a deck, and keywords the keyword
-layer does not model (tied contact, comments) written as raw text.
+ranges above the deck's maxima, the node references of a deck, the tied contact of the
+walls, and comments (written as raw text).
 
 The copy shares every unchanged keyword item with the input (items are never mutated;
 an edit replaces an item in the copy's list), so the input deck stays as read.
@@ -35,6 +35,7 @@ from hollowbody.io.keyword import (
     SetSegment,
     ShellElements,
     SolidElements,
+    TiedContact,
 )
 
 # ---------------------------------------------------------------------------
@@ -132,10 +133,11 @@ class IdAllocator:
             "segment_set": ids(SetSegment, "sid") + _raw_ids(deck, ("SET_SEGMENT",), False),
             "part_set": ids(SetPartList, "sid") + ids(SetPartListGenerate, "sid")
             + _raw_ids(deck, ("SET_PART",), False),
-            "contact": ids(Contact, "cid") + _raw_ids(deck, ("CONTACT_",), False),
+            "contact": ids(Contact, "cid") + ids(TiedContact, "cid")
+            + _raw_ids(deck, ("CONTACT_",), False),
         }
         self.next = {k: (max(v, default=0) // 1000 + 1) * 1000 + 1 for k, v in self.next.items()}
-        n_contacts = sum(1 for it in items if isinstance(it, Contact))
+        n_contacts = sum(1 for it in items if isinstance(it, (Contact, TiedContact)))
         self.next["contact"] = max(self.next["contact"], n_contacts + 1)
 
     def take(self, kind: str, count: int = 1) -> int:
@@ -182,34 +184,14 @@ def referenced_nodes(deck: Deck, skip_pids: set[int]) -> np.ndarray:
 # raw keywords
 
 
-def _card(values: list, width: int = 10) -> str:
-    out = []
-    for v in values:
-        if isinstance(v, float):
-            text = f"{v:.4g}" if len(f"{v:.4g}") <= width else f"{v:.3e}"
-        else:
-            text = str(v)
-        out.append(text.rjust(width)[-width:])
-    return "".join(out)
-
-
 def tied_shell_edge_contact(cid: int, heading: str, node_set: int, segment_set: int,
-                            master_thickness: float) -> RawKeyword:
+                            master_thickness: float) -> TiedContact:
     """*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_ID: the nodes of ``node_set`` (slave, SSTYP 4)
     tied to the segments of ``segment_set`` (master, MSTYP 0); MST = ``master_thickness`` mm
     (the contact thickness that bounds the search for the nodes to tie)."""
-    lines = [
-        "$     CID HEADING",
-        f"{cid:>10d}{heading[:70]}",
-        "$    SSID      MSID     SSTYP     MSTYP    SBOXID    MBOXID       SPR       MPR",
-        _card([node_set, segment_set, 4, 0, 0, 0, 0, 0]),
-        "$      FS        FD        DC        VC       VDC    PENCHK        BT        DT",
-        _card([0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 1.0e20]),
-        "$     SFS       SFM       SST       MST      SFST      SFMT       FSF       VSF",
-        _card([1.0, 1.0, 0.0, float(master_thickness), 1.0, 1.0, 1.0, 1.0]),
-    ]
-    return RawKeyword(keyword="CONTACT_TIED_SHELL_EDGE_TO_SURFACE_ID", lines=lines,
-                      unsupported=True)
+    return TiedContact(type="TIED_SHELL_EDGE_TO_SURFACE", cid=cid, heading=heading[:70],
+                       ssid=node_set, msid=segment_set, sstyp=4, mstyp=0,
+                       mst=float(master_thickness))
 
 
 def comment(lines: list[str]) -> RawKeyword:

@@ -51,9 +51,11 @@ from hollowbody.io.keyword import (
     SetSegment,
     ShellElements,
     SolidElements,
+    TiedContact,
 )
 from hollowbody.io.keyword.kw_loads import _Motion
 from hollowbody.model import model as m
+from hollowbody.model.tied_build import tied_contacts
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
 OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum")
@@ -223,6 +225,7 @@ class _Builder:
         for cc in self.of(ControlContact):
             c.slsfac = _or(cc.slsfac, 0.1)
             c.contact_sort_interval = int(_or(cc.nsbcs, 100))
+            c.tiedprj = int(cc.tiedprj)
         return c
 
     def hourglass(self, ctrl: m.Controls) -> dict[int, m.HourglassDef]:
@@ -366,6 +369,7 @@ def build_model(deck: Deck) -> m.Model:
     model.part_inertia = _part_inertia(b, model)
     _initial_velocities(b, model)
     model.contacts = _contacts(b, model)
+    model.tied_contacts = tied_contacts(b.of(TiedContact), model, len(model.contacts) + 1)
     model.output = _outputs(b, model)
     return model
 

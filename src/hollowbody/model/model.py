@@ -262,6 +262,33 @@ class ContactDef:
     source: Source = field(default_factory=Source)
 
 
+@dataclass
+class TiedContactDef:
+    """*CONTACT_TIED_NODES_TO_SURFACE / _SHELL_EDGE_TO_SURFACE / _SURFACE_TO_SURFACE.
+
+    kind: ``"nodes_to_surface"``, ``"shell_edge_to_surface"`` or
+    ``"surface_to_surface"``. ``slave``: the tied nodes (a node set, or the
+    nodes of a segment set / parts); ``master``: the surface they are tied to
+    (segments or parts). offset: ``_OFFSET`` / ``_CONSTRAINED_OFFSET`` (the
+    initial gap is kept, nodes are not moved onto the surface). sst, mst (mm):
+    contact thickness overrides (0 = shell thickness; negative = the search
+    tolerance itself); sfst, sfmt: their scale factors. See
+    :mod:`hollowbody.solver.tied`.
+    """
+
+    cid: int
+    kind: str
+    slave: SurfaceRef
+    master: SurfaceRef
+    offset: bool = False
+    sst: float = 0.0
+    mst: float = 0.0
+    sfst: float = 1.0
+    sfmt: float = 1.0
+    title: str = ""
+    source: Source = field(default_factory=Source)
+
+
 # ---------------------------------------------------------------------------
 # Controls and output requests
 
@@ -278,6 +305,7 @@ class Controls:
     hourglass: HourglassDef = field(default_factory=lambda: HourglassDef(hgid=0))
     slsfac: float = 0.1
     contact_sort_interval: int = 100  # cycles between bucket sorts (NSBCS)
+    tiedprj: int = 0  # TIEDPRJ: 0 tied slave nodes moved onto the surface, 1 kept where they are
 
 
 @dataclass
@@ -320,6 +348,7 @@ class Model:
     prescribed: list[PrescribedMotion] = field(default_factory=list)
     part_inertia: dict[int, PartInertia] = field(default_factory=dict)
     contacts: list[ContactDef] = field(default_factory=list)
+    tied_contacts: list[TiedContactDef] = field(default_factory=list)
     controls: Controls = field(default_factory=Controls)
     output: OutputRequests = field(default_factory=OutputRequests)
     title: str = ""

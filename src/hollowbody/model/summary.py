@@ -170,6 +170,7 @@ def summarize(model: Model) -> dict:
                       "run_dt": tssfac * min(steps) if steps else None},
         "end_time": model.controls.end_time,
         "contacts": len(model.contacts),
+        "tied_contacts": len(model.tied_contacts),
         "unsupported": [{"keyword": k, "file": f, "line": n} for k, f, n in model.unsupported],
     }
     summary["problems"] = problems(model, summary)

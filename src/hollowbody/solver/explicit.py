@@ -88,6 +88,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     for rt in asm.elements:
         for w in getattr(rt, "warnings", []) or []:
             outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
+    if asm.ties is not None:  # [tied] set-up messages (hollowbody.solver.tied)
+        asm.ties.log(lambda lvl, msg: outputs.log(msg, getattr(logging, lvl.upper())))
     loop = _Loop(model, asm, outputs, end_time, erode)
     status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
     try:
@@ -146,6 +148,8 @@ class _Loop:
         for body in self.asm.bodies:
             self.v[body.nodes] = body.node_velocities(self.x)
         self.constraints.apply_nodes(self.v, self.x, 0.0, 0.0)
+        if self.asm.ties is not None:  # [tied] slaves start with their segments' motion
+            self.asm.ties.start(self.x, self.v, self.w)
         self._forces(0.0)
         if not np.isfinite(self.dt_next) or self.dt_next <= 0.0:
             raise _Terminate(ERROR, "no deformable element sets a time step "
@@ -216,6 +220,8 @@ class _Loop:
                 v[body.nodes] = (x[body.nodes] - xr) / dt
             if self.asm.has_rotations:
                 self.w[body.nodes] = body.omega
+        if self.asm.ties is not None:  # [tied] slaves placed on their moved segments
+            self.asm.ties.follow(x, v, self.w, dt)
 
     def _forces(self, dt: float) -> None:
         f = self.f
@@ -224,6 +230,8 @@ class _Loop:
         t1 = time.perf_counter()
         for c in self.asm.contacts:
             c.add_forces(self.x, self.v, dt, self.cycle, f)
+        if self.asm.ties is not None:  # [tied] slave forces passed to the master nodes
+            self.asm.ties.distribute(f, self.mom)
         t2 = time.perf_counter()
         self.timing["elements"] += t1 - t0
         self.timing["contact"] += t2 - t1

@@ -46,6 +46,8 @@ class Assembly:
     node_rot_inertia: np.ndarray = field(default_factory=lambda: np.zeros(0))
     has_rotations: bool = False
     counts: dict[str, int] = field(default_factory=dict)
+    #: tied contacts (:class:`hollowbody.solver.tied.TieSet`), None when there are none
+    ties: object | None = None
 
     def element_counts(self) -> dict[str, int]:
         return dict(self.counts)
@@ -107,7 +109,9 @@ def assemble(model: Model) -> Assembly:
     """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
     from hollowbody.contact import ContactRuntime
     from hollowbody.elements.solid_group import SolidGroupRuntime
+    from hollowbody.solver.tied import build_ties
 
+    ties = build_ties(model)  # [tied] first: may move slave nodes onto the master surface
     node_mass, part_mass = lumped_node_mass(model)
     counts = {"hexahedra": 0, "wedges": 0, "tetrahedra": 0, "other_solids": 0, "shells": 0}
     asm = Assembly(node_mass=node_mass, part_mass=part_mass,
@@ -151,10 +155,14 @@ def assemble(model: Model) -> Assembly:
         if getattr(rt, "rotational", False):
             asm.node_rot_inertia += rt.lumped_rotational_inertia(n)
             asm.has_rotations = True
+    contact_mass = node_mass.copy()  # [tied] contacts see the element masses
+    if ties is not None:  # [tied] slave masses / inertias moved to the master nodes
+        ties.transfer_mass(node_mass, asm.node_rot_inertia)
+    asm.ties = ties
     asm.bodies = build_rigid_bodies(model, node_mass)
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
     rigid_node = ~asm.deformable
     for cdef in model.contacts:
-        asm.contacts.append(ContactRuntime(cdef, model, node_mass, rigid_node))
+        asm.contacts.append(ContactRuntime(cdef, model, contact_mass, rigid_node))
     return asm

@@ -23,6 +23,7 @@ from hollowbody.io.keyword import (
     SectionSolid,
     ShellElements,
     SolidElements,
+    TiedContact,
     read_deck,
 )
 from hollowbody.model.builder import build_model
@@ -76,9 +77,11 @@ def test_converted_deck_rereads_and_checks(converted, capsys, monkeypatch):
     m0 = build_model(converted["deck"])
     assert lumped_node_mass(model)[0].sum() == pytest.approx(lumped_node_mass(m0)[0].sum(),
                                                             rel=1e-5)
-    # the new keywords are there: tied contact (text), self-contact, section, material
-    raw = [r.keyword for r in deck.of_type(RawKeyword)]
-    assert "CONTACT_TIED_SHELL_EDGE_TO_SURFACE_ID" in raw
+    # the new keywords are there: tied contact, self-contact, section, material
+    assert not [r.keyword for r in deck.of_type(RawKeyword) if r.unsupported]
+    tie = deck.of_type(TiedContact)
+    assert [(t.type, t.sstyp, t.mstyp) for t in tie] == [("TIED_SHELL_EDGE_TO_SURFACE", 4, 0)]
+    assert model.tied_contacts[0].kind == "shell_edge_to_surface"
     assert any(c.type == "AUTOMATIC_SINGLE_SURFACE" and c.ssid == 1 for c in
                deck.of_type(Contact))
 

@@ -73,3 +73,29 @@ def test_runner_runs_or_skips(tmp_path):
         assert r.status == "normal termination", r.status
         assert r.cycles > 0 and r.deflection.size > 0
         assert r.deflection.max() == pytest.approx(0.05 * 1.5, rel=0.05)
+
+
+def test_hollowized_limb_deck_rereads_and_runs_with_its_tie(tmp_path):
+    """The converted deck holds no unsupported keyword; its tie is built and run."""
+    import warnings
+
+    from hollowbody.api import run_model
+    from hollowbody.io.keyword import UnsupportedKeywordWarning, read_deck, write_deck
+
+    limb, report = hollowize(limb_deck("leg", **SMALL), Selection(parts=[PID_MUSCLE]),
+                             HollowOptions(self_contact=False))
+    deck, _ = three_point_bending_deck(limb, end_time=0.01)
+    write_deck(deck, tmp_path / "deck.k")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UnsupportedKeywordWarning)
+        back = read_deck(tmp_path / "deck.k", strict=True)
+    model = build_model(back)
+    assert not model.unsupported
+    (tie,) = model.tied_contacts
+    assert tie.kind == "shell_edge_to_surface" and tie.slave.kind == "nodes"
+    res = run_model(model, tmp_path / "run", vtk=False)
+    assert res.status == "normal termination" and res.cycles > 3
+    log = (tmp_path / "run" / "messages.log").read_text()
+    n_tied = report.parts[0].tied_nodes
+    assert f"{n_tied} slave nodes tied" in log and "not tied" not in log
+    assert "unsupported" not in log.lower()

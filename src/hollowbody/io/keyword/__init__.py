@@ -9,7 +9,13 @@ See ``docs/keyword.md`` for the supported keywords and the deck-building API.
 
 from hollowbody.io.keyword.base import KeywordItem, RawKeyword, SimpleKeyword, Title
 from hollowbody.io.keyword.deck import Deck, Include
-from hollowbody.io.keyword.kw_contact import CONTACT_TYPES, Contact
+from hollowbody.io.keyword.kw_contact import (
+    CONTACT_TYPES,
+    TIED_OFFSETS,
+    TIED_TYPES,
+    Contact,
+    TiedContact,
+)
 from hollowbody.io.keyword.kw_control import (
     ControlBulkViscosity,
     ControlContact,
@@ -62,6 +68,7 @@ __all__ = [
     "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartInertia", "PrescribedMotionNode",
     "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionShell",
     "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
-    "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "Title",
+    "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "TIED_OFFSETS",
+    "TIED_TYPES", "TiedContact", "Title",
     "UnsupportedKeywordWarning", "deck_lines", "read_deck", "read_deck_text", "write_deck",
 ]

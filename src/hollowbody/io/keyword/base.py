@@ -164,7 +164,10 @@ def _parse_spec(spec: str, kinds: dict[str, str]) -> tuple[Field, ...]:
 def _read_id_card(cur: Cursor, block: Block, attrs: tuple[str, str]) -> dict[str, object]:
     """The ``_ID`` card: ID (10 columns, 20 in long format) and a heading."""
     line, text = cur.take("ID card")
-    if "," in text:
+    # free format only when what precedes the first comma is an id (a heading
+    # written in fixed format may itself contain commas)
+    head = text.partition(",")[0].strip()
+    if "," in text and (not head or head.lstrip("+-").isdigit()):
         ident, _, heading = text.partition(",")
     else:
         w = field_width(10, block.fmt)
