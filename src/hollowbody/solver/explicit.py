@@ -202,7 +202,7 @@ class _Loop:
             self.w[self.constraints.fixed_rot] = 0.0
         for body in self.asm.bodies:
             body.advance_velocity(dt_avg)
-            free_v, free_w = body.vel.copy(), body.omega.copy()
+            free_v, free_w = body.vel_free, body.omega_free
             self.constraints.apply_rigid(self.t, dt)
             # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
             self.ext_work += body.mass * float((body.vel - free_v) @ body.vel)

@@ -86,13 +86,20 @@ class RigidBody:
     def advance_velocity(self, dt: float) -> None:
         """V, w from t^{n-1/2} to t^{n+1/2} with the last gathered force."""
         acc = self.force / self.mass if self.mass > 0 else np.zeros(3)
+        # velocities the forces alone would give (prescribed DOFs included): the
+        # solver measures the work of a prescribed motion's reaction against them
+        self.vel_free = self.vel + dt * acc
+        self.vel_free[self.fixed_trans] = 0.0
         acc[self.fixed_trans | self.prescribed_trans] = 0.0
         self.vel = self.vel + dt * acc
         self.vel[self.fixed_trans] = 0.0
+        self.omega_free = self.omega.copy()
         inertia = self.inertia()
         if np.any(np.diag(inertia) > 0.0):
             gyro = np.cross(self.omega, inertia @ self.omega)
             alpha = np.linalg.solve(inertia, self.moment - gyro)
+            self.omega_free = self.omega + dt * alpha
+            self.omega_free[self.fixed_rot] = 0.0
             alpha[self.fixed_rot | self.prescribed_rot] = 0.0
             self.omega = self.omega + dt * alpha
         self.omega[self.fixed_rot] = 0.0
