@@ -113,3 +113,36 @@ def test_errors():
         ContactRuntime(cd, model, mass, rigid)
     with pytest.raises(UserInputError):
         build_surface(SurfaceRef(kind="box"), model)
+
+
+def test_deleted_elements_leave_the_contact():
+    """Segments of eroded elements push no node (LS-DYNA removes them too): two
+    nodes touching a 2 x 2 shell plate feel it until the elements under them
+    are deactivated; the other elements' segments stay."""
+    xp, cp = plate_mesh((2, 2), (20.0, 20.0), (-10.0, -10.0, 0.0))
+    pts = np.array([[-5.0, -5.0, 0.2], [5.0, 5.0, 0.2]])  # above elements 1 and 4
+    model = assemble_model([PartSpec(1, pts, np.zeros((0, 8), np.int32)),
+                            PartSpec(2, xp, cp, "shell", "elastic", {"E": 0.1, "PR": 0.3},
+                                     1e-6, 1.0)])
+    cd = ContactDef(cid=4, kind="nodes_to_surface",
+                    slave=SurfaceRef(kind="nodes", nodes=np.array([0, 1])),
+                    master=SurfaceRef(kind="parts", pids=[2]))
+    n = model.n_nodes
+    rt = ContactRuntime(cd, model, np.full(n, 1e-3), np.zeros(n, bool))
+    f = _call(model, rt)
+    assert rt.n_active == 2 and f[0, 2] > 0.0 and f[1, 2] > 0.0
+    under_first = int(model.shell_groups[0].elem_ids[0])
+    assert rt.deactivate_elements(2, np.array([under_first])) == 1
+    assert rt.deactivate_elements(2, np.array([under_first])) == 0  # already out
+    f = _call(model, rt)
+    assert rt.n_active == 1 and f[0, 2] == 0.0 and f[1, 2] > 0.0
+
+
+def test_drop_dead_rebuilds_the_candidate_lists():
+    from hollowbody.contact.runtime import _drop_dead
+
+    ptr = np.array([0, 3, 3, 5, 5])
+    cand = np.array([1, 2, 3, 2, 4], dtype=np.int32)
+    alive = np.array([True, True, False, True, False])
+    p, c = _drop_dead(ptr, cand, alive)
+    assert p.tolist() == [0, 2, 2, 2, 2] and c.tolist() == [1, 3]
