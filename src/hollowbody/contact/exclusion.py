@@ -16,6 +16,12 @@ Pairs initially in contact but not joined that way (two separate surfaces
 meshed overlapping) are kept and reported (``n_initial_penetrations``):
 their contact pushes them apart. Segments that contain the node are always
 left out by the broad phase.
+
+Tied contacts join the mesh too: the wall edges of a hollowized part are not
+merged with its boundary shells but tied to them (*CONTACT_TIED_...), so a
+tied node is joined (path length 0, :func:`tie_links`) to the corners of the
+master segments it lies on, and junctions across a tie are left out like
+junctions of shared nodes.
 """
 
 from __future__ import annotations
@@ -54,26 +60,71 @@ def initial_contacts(x, nodes, n_thick, seg, s_thick, s_depth, s_two, ptr, cand,
                 out[q] = max(reach, s_depth[s])
 
 
-def edge_graph(segs: list[np.ndarray], x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CSR graph of segment edges: ptr (L + 1,), nbr, length (mm) over rows of x."""
+def edge_graph(segs: list[np.ndarray], x: np.ndarray, links: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CSR graph of segment edges: ptr (L + 1,), nbr, length (mm) over rows of x.
+
+    links: optional (k, 2) row pairs joined with length 0 (ties, :func:`tie_links`).
+    """
     e = []
     for seg in segs:
         if seg.shape[0]:
             for a in range(4):
                 e.append(seg[:, [a, (a + 1) % 4]])
+    nl = 0 if links is None else int(links.shape[0])
+    if nl:
+        e.append(np.asarray(links, dtype=np.int64).reshape(-1, 2))
     if not e:
         return np.zeros(x.shape[0] + 1, np.int64), np.zeros(0, np.int64), np.zeros(0)
     e = np.concatenate(e).astype(np.int64)
-    e = e[e[:, 0] != e[:, 1]]
-    e = np.unique(np.sort(e, axis=1), axis=0)
+    zero = np.zeros(e.shape[0], bool)
+    if nl:
+        zero[-nl:] = True
+    keep = e[:, 0] != e[:, 1]
+    e, zero = e[keep], zero[keep]
+    e = np.sort(e, axis=1)
+    # one row per edge; a tie link wins over a mesh edge between the same nodes
+    order = np.lexsort((~zero, e[:, 1], e[:, 0]))
+    e, zero = e[order], zero[order]
+    first = np.ones(e.shape[0], bool)
+    first[1:] = np.any(e[1:] != e[:-1], axis=1)
+    e, zero = e[first], zero[first]
     both = np.concatenate([e, e[:, ::-1]])
+    zb = np.concatenate([zero, zero])
     order = np.lexsort((both[:, 1], both[:, 0]))
-    both = both[order]
+    both, zb = both[order], zb[order]
     ptr = np.zeros(x.shape[0] + 1, np.int64)
     np.add.at(ptr, both[:, 0] + 1, 1)
     ptr = np.cumsum(ptr)
-    length = np.linalg.norm(x[both[:, 1]] - x[both[:, 0]], axis=1)
+    length = np.where(zb, 0.0, np.linalg.norm(x[both[:, 1]] - x[both[:, 0]], axis=1))
     return ptr, both[:, 1], length
+
+
+def tie_links(x0: np.ndarray, nodes: np.ndarray, seg: np.ndarray, tol: float) -> np.ndarray:
+    """Zero-length graph links of tied nodes to the master segments they lie on.
+
+    x0 (L, 3) mm; nodes (m,) rows of the tied (slave) nodes; seg (S, 4) rows of
+    the tie's master segments; tol mm: a node closer than tol to a segment
+    (projection inside) lies on it. Returns (k, 2) int64 pairs (node, corner).
+    """
+    from hollowbody.contact.bucket import bucket_sort
+
+    nodes = np.ascontiguousarray(nodes, dtype=np.int32)
+    seg = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 4)
+    if nodes.size == 0 or seg.shape[0] == 0:
+        return np.zeros((0, 2), np.int64)
+    ptr, cand = bucket_sort(x0, nodes, seg, np.full(seg.shape[0], tol))
+    reach = np.zeros(cand.shape[0])
+    # two-sided, contact distance tol (node "thickness" 2 tol, segments 0)
+    initial_contacts(x0, nodes, np.full(nodes.shape[0], 2.0 * tol), seg,
+                     np.zeros(seg.shape[0]), np.zeros(seg.shape[0]),
+                     np.ones(seg.shape[0], np.int8), ptr, cand, reach)
+    hit = np.nonzero(reach > 0.0)[0]
+    if hit.size == 0:
+        return np.zeros((0, 2), np.int64)
+    node_of = np.repeat(np.arange(nodes.shape[0]), np.diff(ptr))
+    pairs = np.column_stack([np.repeat(nodes[node_of[hit]], 4), seg[cand[hit]].ravel()])
+    return np.unique(pairs.astype(np.int64), axis=0)
 
 
 def _within(src: int, radius: float, ptr, nbr, length) -> dict[int, float]:

@@ -39,7 +39,10 @@ def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
     ny = e1z * e2x - e1x * e2z
     nz = e1x * e2y - e1y * e2x
     nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-    if nn <= 0.0:
+    # den = |e1|^2 |e2|^2 - (e1 . e2)^2 = nn^2 exactly; computed as nn^2 it has no
+    # cancellation (a sliver triangle could give 0 the other way round)
+    den = nn * nn
+    if not den > 0.0:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     nx /= nn
     ny /= nn
@@ -54,7 +57,6 @@ def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
     d11 = e2x * e2x + e2y * e2y + e2z * e2z
     d20 = rx * e1x + ry * e1y + rz * e1z
     d21 = rx * e2x + ry * e2y + rz * e2z
-    den = d00 * d11 - d01 * d01
     s = (d11 * d20 - d01 * d21) / den
     t = (d00 * d21 - d01 * d20) / den
     wa = 1.0 - s - t
@@ -142,7 +144,7 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
     ny = tz * sx - tx * sz
     nz = tx * sy - ty * sx
     nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-    if nn <= 0.0:
+    if not nn > 0.0:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     lim = 1.0 + INSIDE_TOL
     inside = abs(xi) <= lim and abs(eta) <= lim

@@ -13,10 +13,21 @@ and reach = (t_node + t_seg) / 2:
   |d| < reach, g = reach - |d|, direction sign(d) n; while it stays in
   contact it keeps that side (the last contact normal is remembered), so a
   node pushed past the mid-surface is still pushed back,
-  g = reach - sign * d up to the release depth ``penmax`` * sqrt(A) behind.
+  g = reach - sign * d up to the release depth behind the mid-surface,
+  ``max(penmax * sqrt(A), reach)``: never less than the contact half
+  thickness, else a node released inside the shell's own contact thickness
+  would at once be caught from the far side and pushed through.
 
-Normal force ``F_n = k g`` (minus the optional VDC damping ``c v_n``, never
-adhesive), friction by an elastic trial with the same spring k::
+Normal force ``F_n = k g`` up to ``g1 = stiffen * G`` (G = reach + release
+depth, the penetration at which the node would be released); deeper, the
+tangent stiffness rises incrementally to the largest value that keeps every
+node the spring acts on stable at the *current* step with all its contact
+springs together, ``(omega dt)^2 <= 0.5`` (see :mod:`hollowbody.contact.law`).
+So the force a node can carry before release follows the stiffening of the
+material under it (whose wave speed sets dt) and the speed of the impact,
+without exceeding the explicit stability limit. Minus the optional VDC
+damping ``c v_n`` (never adhesive). Friction by an elastic trial with the
+spring k::
 
     f* = f_t(old, rotated into the current tangent plane) - k * v_t * dt
     mu = FD + (FS - FD) * exp(-DC * |v_t|)
@@ -25,6 +36,13 @@ adhesive), friction by an elastic trial with the same spring k::
 (v_t the tangential velocity of the node relative to the contact point;
 f_t is stored per node between cycles). The pair force F = F_n n' + f_t acts
 on the node and -N_a F on the segment's nodes: momentum is conserved exactly.
+
+Pass-through detection: a node that was in contact with segment s in the
+previous cycle, had entered that contact from outside (first gap at most
+``ENTRY_FRACTION`` of the penetration at release) and is now behind s (on
+the side opposite to the one it was pushed to) by more than the release
+depth has been pushed through the surface; its row of ``othru`` gets s
+(else -1), see :class:`~hollowbody.contact.runtime.ContactRuntime`.
 
 Per-node results are computed in parallel (``prange`` over nodes, each writes
 only its own row), then scattered serially (race-free). No allocation in the
@@ -38,12 +56,18 @@ import math
 from numba import njit, prange
 
 from hollowbody.contact.geometry import project_corners
+from hollowbody.contact.law import (
+    DT_FLOOR,
+    ENTRY_FRACTION,
+    deep_stiffness,
+    penalty_force,
+    pushed_through,
+    release_depth,
+)
 
 #: Nodes (segments) per parallel work item: array arguments cost an
 #: incref/decref per call, so kernels are called per chunk, not per item.
 _CHUNK = 256
-
-
 @njit(cache=True)
 def _frames_range(s0, s1, x, seg, cen, nrm, rad2, warp):
     for s in range(s0, s1):
@@ -108,8 +132,8 @@ def segment_frames(x, seg, cen, nrm, rad2, warp):
 
 @njit(cache=True)
 def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k,
-                 s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg,
-                 ow, of, ogap):
+                 s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
+                 ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Contact of nodes i0 <= i < i1 of a pass (body of :func:`contact_pass`)."""
     slsfac = params[0]
     soft = params[1]
@@ -119,6 +143,8 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
     dc = params[5]
     vdc = params[6]
     fric = params[7] > 0.0
+    stiffen = params[8]
+    deep = params[9]
     for i in range(i0, i1):
         nd = nodes[i]
         px = x[nd, 0]
@@ -131,13 +157,15 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         best = -1
         best_ad = 1.0e300
         bgap = 0.0
+        brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
         for q in range(ptr[i], ptr[i + 1]):
             s = cand[q]
             reach = 0.5 * (tn + s_thick[s])
             two = s_two[s] != 0
-            lim = max(reach, s_depth[s])
+            rel = release_depth(s_depth[s], reach, two)
+            lim = max(reach, rel)
             rx = px - cen[s, 0]
             ry = py - cen[s, 1]
             rz = pz - cen[s, 2]
@@ -165,7 +193,7 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
                 if al > 0.5 or al < -0.5:
                     sg = 1.0 if al > 0.0 else -1.0
                     de = sg * d
-                    if de >= reach or de <= -s_depth[s]:
+                    if de >= reach or de <= -rel:
                         continue
                     gap = reach - de
                 else:
@@ -177,13 +205,14 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
                 ny *= sg
                 nz *= sg
             else:
-                if d >= reach or d <= -s_depth[s]:
+                if d >= reach or d <= -rel:
                     continue
                 gap = reach - d
             if ad < best_ad:
                 best_ad = ad
                 best = s
                 bgap = gap
+                brel = reach + rel
                 bnx = nx
                 bny = ny
                 bnz = nz
@@ -191,6 +220,13 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
+        prev = oseg[i]
+        # a fresh contact starts the stiffening from its first gap (no increment)
+        gprev = ogap[i] if prev >= 0 else bgap
+        othru[i] = -1
+        if prev >= 0 and prev != best and oentry[i] != 0:
+            othru[i] = pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, prev,
+                                       mx, my, mz)
         oseg[i] = best
         if best < 0:
             ft[i, 0] = 0.0
@@ -200,10 +236,14 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
             of[i, 1] = 0.0
             of[i, 2] = 0.0
             ogap[i] = 0.0
+            ofd[i] = 0.0
+            oentry[i] = 0
             nprev[i, 0] = 0.0
             nprev[i, 1] = 0.0
             nprev[i, 2] = 0.0
             continue
+        if prev < 0:  # entered from outside: shallow first gap
+            oentry[i] = 1 if bgap <= ENTRY_FRACTION * brel else 0
         nprev[i, 0] = bnx
         nprev[i, 1] = bny
         nprev[i, 2] = bnz
@@ -224,7 +264,7 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         ms = s_mass[s]
         mstar = min(mn, ms)
         k = k0
-        if dtc > 0.0 and mstar < 1.0e300:
+        if dtc * dtc > 0.0 and mstar < 1.0e300:
             k1 = 0.5 * mstar / (dtc * dtc)
             if soft > 0.0:
                 k = max(k0, sofscl * k1)
@@ -239,12 +279,20 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         vry = v[nd, 1] - (bw0 * v[a, 1] + bw1 * v[b, 1] + bw2 * v[c, 1] + bw3 * v[dd, 1])
         vrz = v[nd, 2] - (bw0 * v[a, 2] + bw1 * v[b, 2] + bw2 * v[c, 2] + bw3 * v[dd, 2])
         vn = vrx * bnx + vry * bny + vrz * bnz
-        fn = k * bgap
+        g1 = stiffen * brel
+        kd = 0.0
+        if bgap > g1:
+            # the step, floored at DT_FLOOR of the reference step: a collapsing
+            # element (which ends the run anyway) does not drive the force up
+            kd = deep_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wprev, deep,
+                                max(dt, DT_FLOOR * dtc))
+        fn, fdn = penalty_force(bgap, gprev, ofd[i], k, kd, g1, 0.5 * (brel - g1))
+        ofd[i] = fdn
         if vdc > 0.0 and mstar < 1.0e300:
             inv = 0.0
-            if mn < 1.0e300:
+            if 0.0 < mn < 1.0e300:
                 inv += 1.0 / mn
-            if ms < 1.0e300:
+            if 0.0 < ms < 1.0e300:
                 inv += 1.0 / ms
             omega = math.sqrt(k * inv)
             fn -= 0.01 * vdc * 2.0 * mstar * omega * vn
@@ -297,8 +345,8 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
 
 @njit(cache=True, parallel=True)
 def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
-                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg, ow,
-                 of, ogap):
+                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev, ft, nprev,
+                 oseg, ow, of, ogap, ofd, oentry, othru):
     """Detect contact and compute the pair force of every node of one pass.
 
     x, v: (L, 3) float64 mm, mm/ms (local rows); dt, dtc: ms (step, SOFT=1
@@ -310,36 +358,48 @@ def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, 
     (S,) mm release depth; s_two (S,) int8 1 = two-sided.
     cen, nrm, rad2, warp: :func:`segment_frames`; ptr (ns + 1,) int64, cand int32:
     candidate segments per node.
-    params (8,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc, vdc, friction on.
+    params (10,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc, vdc, friction on,
+    start of the stiffened zone (fraction of the penetration at release), its
+    stability limit (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`). mloc (L,) kg
+    nodal masses of the rows of x (inf: rigid), wprev (L,) summed spring weights per row in the
+    last cycle (:func:`scatter_pass`).
     ft (ns, 3) kN friction state, nprev (ns, 3) contact normal of the last
-    cycle (zero when not in contact; two-sided side memory) (in/out).
-    Outputs: oseg (ns,) int32 segment in contact or -1, ow (ns, 4) shape
-    functions, of (ns, 3) kN force on the node, ogap (ns,) mm penetration.
+    cycle (zero when not in contact; two-sided side memory) (in/out);
+    oseg (ns,) int32 segment in contact or -1, ogap (ns,) mm penetration and
+    ofd (ns,) kN stiffening force (:func:`~hollowbody.contact.law.penalty_force`), oentry (ns,) int8
+    1 when the contact began shallow (:data:`~hollowbody.contact.law.ENTRY_FRACTION`) (in: last
+    cycle's, out: this one's). Outputs: ow (ns, 4) shape functions, of (ns, 3) kN
+    force on the node, othru (ns,) int32 segment the node was pushed
+    through this cycle or -1.
     """
     ns = nodes.shape[0]
     nch = (ns + _CHUNK - 1) // _CHUNK
     for c in prange(nch):
         _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, v, dt, dtc, nodes, n_thick, n_k,
                      n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp,
-                     ptr, cand, params, ft, nprev, oseg, ow, of, ogap)
+                     ptr, cand, params, mloc, wprev, ft, nprev, oseg, ow, of, ogap, ofd,
+                     oentry, othru)
 
 
 @njit(cache=True)
 def contact_pass_serial(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
-                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev, oseg, ow,
-                 of, ogap):
+                        s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
+                        ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Serial :func:`contact_pass` (small passes: no thread start-up)."""
     _nodes_range(0, nodes.shape[0], x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick,
-                 s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, ft, nprev,
-                 oseg, ow, of, ogap)
+                 s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc,
+                 wprev, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru)
 
 
 @njit(cache=True)
-def scatter_pass(nodes, seg, oseg, ow, of, f, fsum):
+def scatter_pass(nodes, seg, oseg, ow, of, f, fsum, wsum):
     """Add the pair forces of one pass into f (L, 3) kN (serial, race-free).
 
     Node gets +F, the segment's corners -N_a F. fsum (3,) accumulates the
-    sum of F (force on the pass's nodes). Returns the number of nodes in contact.
+    sum of F (force on the pass's nodes); wsum (L,) the weight of every spring
+    on each row (1 on the node, N_a on the corners; see
+    :func:`~hollowbody.contact.law.deep_stiffness`).
+    Returns the number of nodes in contact.
     """
     n = 0
     for i in range(nodes.shape[0]):
@@ -349,6 +409,12 @@ def scatter_pass(nodes, seg, oseg, ow, of, f, fsum):
         n += 1
         nd = nodes[i]
         tri = seg[s, 3] == seg[s, 2]
+        wsum[nd] += 1.0
+        wsum[seg[s, 0]] += ow[i, 0]
+        wsum[seg[s, 1]] += ow[i, 1]
+        wsum[seg[s, 2]] += ow[i, 2]
+        if not tri:
+            wsum[seg[s, 3]] += ow[i, 3]
         for k in range(3):
             fk = of[i, k]
             f[nd, k] += fk
@@ -394,3 +460,13 @@ def finish(nodes, fl, fprev, xl, xprev, f):
             xprev[i, k] = xl[i, k]
     return de
 
+
+
+@njit(cache=True)
+def count_through(othru):
+    """Number of rows of othru (ns,) int32 that name a segment (pass-through events)."""
+    n = 0
+    for i in range(othru.shape[0]):
+        if othru[i] >= 0:
+            n += 1
+    return n

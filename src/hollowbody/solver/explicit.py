@@ -312,6 +312,9 @@ class _Loop:
         self.n_eroded += int(bad.size)
         if bad.size:
             rt.erode(bad)
+            for c in self.asm.contacts:  # their segments leave the contacts
+                if hasattr(c, "deactivate_elements"):
+                    c.deactivate_elements(rt.pid, rt.elem_ids[bad])
         return int(bad.size)
 
     # -- energies ---------------------------------------------------------------

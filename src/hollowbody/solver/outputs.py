@@ -90,6 +90,7 @@ class RunOutputs:
             return  # already written at this very state (end of run after a forced row)
         if force:
             self._last_forced = (loop.cycle, loop.t)
+        self._contact_events(loop)
         t = loop.t
         if self.clocks["glstat"].due(t) or force:
             e = loop.energies()
@@ -122,6 +123,14 @@ class RunOutputs:
             self._write_matsum(loop)
         if self.vtk is not None and (self.state_clock.due(t) or force):
             self.write_state(loop)
+
+    def _contact_events(self, loop) -> None:
+        """Log the contacts' new warnings (nodes pushed through a surface)."""
+        for c in self.asm.contacts:
+            for w in (c.pop_events() if hasattr(c, "pop_events") else ()):
+                self.log(w["message"], logging.WARNING)
+                if loop.monitors is not None:
+                    loop.monitors.warnings.append(w)
 
     def _part_energies(self, loop) -> tuple[dict[int, float], dict[int, tuple[float, int]]]:
         energy = self._part_kinetic(loop)
@@ -212,6 +221,9 @@ class RunOutputs:
             "energy_ratio": energies.get("energy_ratio"),
             "energies_J": energies,
             "warnings": loop.monitors.warnings if loop.monitors is not None else [],
+            "contact_pass_through": {
+                str(c.cid): {"events": c.n_pass_through, "nodes": len(c.pass_through_nodes)}
+                for c in self.asm.contacts if hasattr(c, "n_pass_through")},
         }
         (self.out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json))
         level = logging.INFO if status == "normal termination" else logging.ERROR

@@ -1,0 +1,91 @@
+"""Small decks for the contact verification tests (built with the Deck API).
+
+Units: mm, ms, kg, GPa.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.io.keyword import (
+    BoundarySpcSet,
+    Contact,
+    ControlTermination,
+    ControlTimestep,
+    DatabaseAscii,
+    DatabaseHistoryNode,
+    Deck,
+    DefineCurve,
+    Hourglass,
+    InitialVelocityGeneration,
+    MatRigid,
+    MatSimplifiedRubber,
+    Part,
+    SectionShell,
+    SectionSolid,
+    SetNodeList,
+)
+from hollowbody.scenarios.geometry import block_mesh
+from hollowbody.scenarios.tissues import tissue
+
+#: First node / element id of the plate.
+PLATE_ID0 = 100_001
+
+
+def _plate(size: float, n: int, z: float) -> tuple[np.ndarray, np.ndarray]:
+    """Square quad plate (edge ``size`` mm, n x n quads) centred on the z axis at height z."""
+    g = np.linspace(-size / 2, size / 2, n + 1)
+    yy, xx = np.meshgrid(g, g, indexing="ij")
+    x = np.column_stack([xx.ravel(), yy.ravel(), np.full(xx.size, z)])
+    j, i = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    p = (j * (n + 1) + i).ravel()
+    return x, np.column_stack([p, p + n + 1, p + n + 2, p + 1])
+
+
+def soft_block_and_rigid_plate(*, tissue_name: str = "fat", size: float = 60.0,
+                               height: float = 30.0, mesh: float = 7.5,
+                               plate_size: float = 45.0, plate_elem: float = 3.0,
+                               plate_t: float = 4.0, plate_mass: float = 1.0,
+                               speed: float = 20.0, end: float = 5.0,
+                               friction: float = 0.2, soft: int = 1) -> Deck:
+    """A MAT_181 tissue block (bottom fixed) struck on top by a rigid flat plate moving -z.
+
+    The block is ``size`` x ``size`` x ``height`` mm (hexahedra of edge ``mesh``),
+    with the block test's tissue law; the plate (``plate_size`` mm square,
+    quads of about ``plate_elem`` mm, rigid shells ``plate_t`` mm thick, i.e.
+    a contact offset of ``plate_t / 2``) weighs ``plate_mass`` kg and starts
+    0.1 mm above its contact offset at ``speed`` mm/ms.
+    *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE id 1, tissue slave, plate master.
+    """
+    t = tissue(tissue_name)
+    xb, cb = block_mesh((size, size, height), mesh)  # centred in x, y; on z = 0
+    nplate = max(1, int(round(plate_size / plate_elem)))
+    xp, qp = _plate(plate_size, nplate, height + 0.5 * plate_t + 0.1)
+    bid = np.arange(1, xb.shape[0] + 1)
+    pid_nodes = PLATE_ID0 + np.arange(xp.shape[0])
+    deck = Deck()
+    deck.title = f"{tissue_name} block and rigid plate"
+    deck.add_nodes(bid, xb)
+    deck.add_nodes(pid_nodes, xp)
+    deck.add_solids(np.arange(1, cb.shape[0] + 1), 1, bid[cb])
+    deck.add_shells(PLATE_ID0 + np.arange(qp.shape[0]), 2, pid_nodes[qp], thickness=plate_t)
+    deck.add(Part(pid=1, secid=1, mid=1, hgid=1, title="tissue"))
+    deck.add(Part(pid=2, secid=2, mid=2, title="plate"))
+    deck.add(SectionSolid(secid=1))
+    deck.add(SectionShell(secid=2, t1=plate_t, nip=2))
+    deck.add(MatSimplifiedRubber(mid=1, ro=t.density, km=t.bulk_modulus, lcid=1))
+    deck.add(DefineCurve(lcid=1, points=np.column_stack([t.strain, t.stress]).tolist()))
+    deck.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+    deck.add(MatRigid(mid=2, ro=plate_mass / (plate_size ** 2 * plate_t), e=210.0, pr=0.3,
+                      cmo=1, con1=4, con2=7))
+    deck.add(SetNodeList(sid=1, nodes=bid[xb[:, 2] < 1e-9].tolist()))
+    deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1))
+    deck.add(InitialVelocityGeneration(id=2, styp=2, vz=-speed))
+    deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=1, ssid=1, sstyp=3, msid=2,
+                     mstyp=3, fs=friction, fd=friction, soft=soft))
+    deck.add(ControlTermination(endtim=end))
+    deck.add(ControlTimestep(tssfac=0.9))
+    for name in ("GLSTAT", "RCFORC", "NODOUT"):
+        deck.add(DatabaseAscii(name=name, dt=end / 200))
+    deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
+    return deck
