@@ -28,8 +28,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: long enough for the rebound)")
     p.add_argument("--friction", type=float, default=0.2, help="impactor-tissue friction")
-    p.add_argument("--erode", action="store_true",
-                   help="delete solids reaching negative volume instead of stopping")
+    p.add_argument("--erode", action=argparse.BooleanOptionalAction, default=None,
+                   help="delete collapsed elements (solids: negative volume; shells: area "
+                        "below 1 %%) instead of stopping (default: on for hollow, off for "
+                        "solid)")
     p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
     p.add_argument("--quiet", action="store_true", help="no progress display")
     g = p.add_argument_group("hollow structure (--structure hollow)")

@@ -63,7 +63,7 @@ class BlockConfig:
     edge_radius: float = 5.0
     end_time: float | None = None
     friction: float = 0.2
-    erode: bool = False
+    erode: bool | None = None  # None: off for solid blocks, on for hollow ones
     hourglass_ihq: int = 4
     hourglass_qh: float = 0.05
     # hollow structure (structure="hollow"); None -> the paper's fit for the tissue
@@ -112,6 +112,14 @@ class BlockConfig:
     def speed(self) -> float:
         """Impact speed in mm/ms."""
         return kmh_to_mm_per_ms(self.speed_kmh)
+
+    @property
+    def erodes(self) -> bool:
+        """Erosion on? Given, else on for the hollow block only: there a wall
+        element crushed in its plane (area < 1 %) is deleted and the run goes on,
+        as crush simulations of thin-walled structures do; in the solid block a
+        negative volume is a finding (error termination)."""
+        return bool(self.erode) if self.erode is not None else self.structure == "hollow"
 
     def duration(self) -> float:
         """Simulated time (ms): given, or long enough for compression and rebound."""
@@ -177,7 +185,7 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
                      heading="tissue-impactor", ssid=ssid, sstyp=sstyp, msid=PID_IMPACTOR,
                      mstyp=3, fs=cfg.friction, fd=cfg.friction, soft=1))
     deck.add(ControlTermination(endtim=end, dtmin=cfg.dtmin))
-    deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erode else 0))
+    deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erodes else 0))
     for name in ("GLSTAT", "RCFORC", "NODOUT", "SPCFORC", "MATSUM"):
         deck.add(DatabaseAscii(name=name, dt=cfg.output_dt))
     deck.add(DatabaseBinaryD3plot(dt=end / cfg.states))
