@@ -63,6 +63,21 @@ def test_prescribed_rigid_motion_work_balances_the_energy(tmp_path):
     assert np.allclose(rb["vz [mm/ms]"][1:], -3.0)
 
 
+def test_impulsive_prescribed_start_adds_only_the_kinetic_energy(tmp_path):
+    """A plate at rest, prescribed to move at 3 mm/ms from t = 0 (a velocity jump):
+    the reaction impulse adds 1/2 M V^2, so the energy ratio starts at 1 (it was
+    0.5 when the impulse's work was taken at the end velocity), within 2 %."""
+    from hollowbody.io.keyword import DefineCurve, PrescribedMotionRigid
+
+    deck = cube_and_plate(e=0.1, speed=0.0, end=1.0)
+    deck.add(DefineCurve(lcid=9, points=[[0.0, -3.0], [10.0, -3.0]]))
+    deck.add(PrescribedMotionRigid(pid=2, dof=3, vad=0, lcid=9))
+    res = _run(deck, tmp_path)
+    g = read_history(tmp_path / "glstat.csv")
+    ratio = g["energy_ratio"][1:]
+    assert np.all(np.abs(ratio - 1.0) < 0.02), (ratio.min(), ratio.max())
+
+
 def test_negative_volume_is_an_error_termination_with_outputs_kept(tmp_path):
     res = _run(crushed_column(crush=30.0, end=1.0), tmp_path)
     assert res.status == "error termination"
