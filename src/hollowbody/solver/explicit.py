@@ -145,6 +145,9 @@ class _Loop:
 
     # -- set-up ---------------------------------------------------------------
     def start(self) -> None:
+        # prescribed rigid-body velocities hold from t = 0 (initial conditions, in the
+        # initial kinetic energy, not a jump in the first cycle)
+        self.constraints.apply_rigid(0.0, 0.0)
         for body in self.asm.bodies:
             self.v[body.nodes] = body.node_velocities(self.x)
         self.constraints.apply_nodes(self.v, self.x, 0.0, 0.0)
@@ -204,17 +207,15 @@ class _Loop:
             body.advance_velocity(dt_avg)
             free_v, free_w = body.vel_free, body.omega_free
             self.constraints.apply_rigid(self.t, dt)
-            # work of the prescribed-motion reaction impulse M (V_imp - V_free) at the
-            # mean velocity during the impulse, (V_imp + V_free) / 2: exactly the kinetic
-            # energy it adds (an impulsive start from rest adds 1/2 M V^2, not M V^2)
-            self.ext_work += 0.5 * body.mass * float((body.vel - free_v) @ (body.vel + free_v))
-            self.ext_work += 0.5 * float((body.omega - free_w) @ body.inertia()
-                                         @ (body.omega + free_w))
+            # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
+            # (force times the step's displacement, as for prescribed nodes below)
+            self.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
+            self.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
         self.constraints.apply_nodes(v, x, self.t, dt)
         pn = self.constraints.prescribed_nodes
         if pn.size:
             dv = v[pn] - v_free[pn]
-            self.ext_work += 0.5 * float((self.m[pn, None] * dv * (v[pn] + v_free[pn])).sum())
+            self.ext_work += float((self.m[pn, None] * dv * v[pn]).sum())
         x_old_rigid = [x[b.nodes].copy() for b in self.asm.bodies]
         x += dt * v
         for body, xr in zip(self.asm.bodies, x_old_rigid):
