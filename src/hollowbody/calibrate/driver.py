@@ -16,7 +16,9 @@ Files in the output folder ``DIR``:
 - ``checkpoint.json`` — settings and every completed generation's decision
   vectors and fitness (``--resume`` replays them; see :mod:`.ga`),
 - ``calibration.json`` — settings, best parameters and fitness, per-generation
-  statistics and every evaluation (rewritten after each generation),
+  statistics, every evaluation, ``elapsed_seconds`` (wall time of this call,
+  references included) and ``runs_here`` (evaluations run by this call, not
+  from the cache); rewritten after each generation,
 - the report (``convergence.png``, ``overlay.png``, ``best_hollow/deck.k``,
   ``table1.md``, ``table1.csv``; :mod:`hollowbody.report.calibration`).
 
@@ -29,6 +31,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -177,6 +180,7 @@ class _Session:
         self.runs_here = 0
         self.references: dict[float, ForceDisplacement] = {}
         self.runner_description = ""
+        self.t0 = time.perf_counter()
 
     def remember(self, record: dict, generation: int) -> None:
         key = record["key"]
@@ -193,6 +197,7 @@ class _Session:
         b = self.best
         return {**self.settings_dict, "status": status, "context": self.context,
                 "runner": self.runner_description,
+                "elapsed_seconds": time.perf_counter() - self.t0, "runs_here": self.runs_here,
                 "best_parameters": None if b is None else b["params"],
                 "best_fitness": None if b is None else b["fitness"],
                 "best_run_dirs": None if b is None else [r["run_dir"] for r in b["runs"]],

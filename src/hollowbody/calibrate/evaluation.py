@@ -9,7 +9,7 @@ exception, becomes a record with a penalty fitness and its reason. A record::
      "wall_seconds": 12.3,
      "runs": [{"speed_kmh": 40.0, "status": ..., "reason": ..., "fitness": ...,
                "wall_seconds": ..., "cycles": ..., "peak_force_kN": ...,
-               "max_displacement_mm": ..., "run_dir": ...}, ...]}
+               "max_displacement_mm": ..., "eroded_elements": ..., "run_dir": ...}, ...]}
 
 The fitness of a record is the sum over speeds of
 :func:`~hollowbody.calibrate.fitness.curve_distance`, or
@@ -54,6 +54,38 @@ def finite_or_none(v: Any) -> float | None:
     return f if math.isfinite(f) else None
 
 
+def eroded_count(summary: dict | None) -> int | None:
+    """Elements a run deleted (its summary's ``eroded_elements``; None if not reported)."""
+    v = (summary or {}).get("eroded_elements")
+    try:
+        return None if v is None else int(v)
+    except (TypeError, ValueError):
+        return None
+
+
+def hourglass_percent(summary: dict | None) -> float | None:
+    """Hourglass energy at the end of a run in % of its total energy (None if not reported).
+
+    A quality indicator: above ~10 % the zero-energy modes carry a large share
+    of the work and the force-displacement curve is questionable."""
+    e = (summary or {}).get("energies_J") or {}
+    hg, total = finite_or_none(e.get("hourglass")), finite_or_none(e.get("total"))
+    if hg is None or total is None or total <= 0.0:
+        return None
+    return 100.0 * hg / total
+
+
+def pass_through_nodes(summary: dict | None) -> int | None:
+    """Nodes the run's contacts reported pushed through a surface (summed over contacts)."""
+    c = (summary or {}).get("contact_pass_through")
+    if not isinstance(c, dict):
+        return None
+    try:
+        return int(sum(int((v or {}).get("nodes", 0)) for v in c.values()))
+    except (TypeError, ValueError, AttributeError):
+        return None
+
+
 @dataclass
 class CandidateTask:
     """Everything a worker needs to evaluate one candidate (picklable).
@@ -79,7 +111,7 @@ def _run_entry(speed: float, out, cfc: float | None) -> dict:
             "fitness": None, "wall_seconds": finite_or_none(out.wall_seconds),
             "cycles": int(out.cycles), "peak_force_kN": finite_or_none(peak),
             "max_displacement_mm": finite_or_none(curve.max_displacement),
-            "run_dir": out.run_dir}
+            "eroded_elements": eroded_count(out.summary), "run_dir": out.run_dir}
 
 
 def evaluate_candidate(task: CandidateTask) -> dict:

@@ -7,10 +7,19 @@ a row::
      "reason": "negative volume in solid element 123 ...", "end_time_ms": 4.2,
      "requested_end_time_ms": 20.0, "cycles": 812, "wall_seconds": 31.0,
      "hexahedra": 6912, "shells": 960, "peak_force_kN": 21.3,
-     "peak_force_raw_kN": 80.1, "max_displacement_mm": 60.2, "run_dir": "..."}
+     "peak_force_raw_kN": 80.1, "max_displacement_mm": 60.2, "eroded_elements": 0,
+     "energy_ratio": 1.0, "hourglass_percent": 3.9, "pass_through_nodes": 0,
+     "run_dir": "..."}
 
-Element counts are the run's (the rigid impactor's shells included). Peak
-forces are CFC-filtered (:func:`hollowbody.calibrate.fitness.smoothed`) and raw.
+Element counts are the run's (the rigid impactor's shells included);
+``eroded_elements`` is the number of elements the run deleted (the hollow
+block erodes wall shells crushed in their plane; None when the run does not
+report it). Peak forces are CFC-filtered
+(:func:`hollowbody.calibrate.fitness.smoothed`) and raw (unfiltered, single-cycle
+contact spikes included). Quality indicators from the run's summary:
+``energy_ratio`` (total / initial energy at the end), ``hourglass_percent``
+(hourglass energy in % of the total at the end) and ``pass_through_nodes``
+(nodes the contacts reported pushed through a surface).
 Runs go through a runner (:mod:`hollowbody.calibrate.runner`): serial by
 default, so wall times are those of one run on the whole machine; with N
 workers they are those of one single-threaded run sharing the machine. The
@@ -25,7 +34,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hollowbody.calibrate.evaluation import finite_or_none, speed_dir
+from hollowbody.calibrate.evaluation import (
+    eroded_count,
+    finite_or_none,
+    hourglass_percent,
+    pass_through_nodes,
+    speed_dir,
+)
 from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.reference import read_curve_csv
 from hollowbody.calibrate.runner import SerialRunner
@@ -52,7 +67,8 @@ def _empty_row(task: StudyTask, status: str, reason: str) -> dict:
             "reason": reason, "end_time_ms": None, "requested_end_time_ms": None,
             "cycles": None, "wall_seconds": None, "hexahedra": None, "shells": None,
             "peak_force_kN": None, "peak_force_raw_kN": None, "max_displacement_mm": None,
-            "run_dir": task.run_dir}
+            "eroded_elements": None, "energy_ratio": None, "hourglass_percent": None,
+            "pass_through_nodes": None, "run_dir": task.run_dir}
 
 
 def run_study_task(task: StudyTask) -> dict:
@@ -76,8 +92,12 @@ def run_study_task(task: StudyTask) -> dict:
                 "cycles": int(out.cycles), "wall_seconds": finite_or_none(out.wall_seconds),
                 "hexahedra": counts.get("hexahedra"), "shells": counts.get("shells"),
                 "peak_force_kN": finite_or_none(peak),
-                "peak_force_raw_kN": finite_or_none(curve.peak_force),
+                "peak_force_raw_kN": finite_or_none(curve.peak_force_raw),
                 "max_displacement_mm": finite_or_none(curve.max_displacement),
+                "eroded_elements": eroded_count(s),
+                "energy_ratio": finite_or_none(s.get("energy_ratio")),
+                "hourglass_percent": finite_or_none(hourglass_percent(s)),
+                "pass_through_nodes": pass_through_nodes(s),
                 "run_dir": out.run_dir})
     if out.run_dir is None:
         return row

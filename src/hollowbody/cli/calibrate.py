@@ -171,6 +171,6 @@ def main(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     print("best: " + ", ".join(f"{k} {v:g} {WALL_UNITS[k]}" for k, v in wall.items())
           + f"; fitness {result.best_fitness:.4g} ({len(result.evaluations)} evaluations, "
-          f"{result.runs_here} run now)")
+          f"{result.runs_here} run now, {result.data.get('elapsed_seconds', 0.0):.0f} s wall)")
     print(f"outputs in {out}: " + ", ".join(p.name for p in files.values()))
     return 0

@@ -9,9 +9,13 @@ so the report can be rebuilt from a finished (or interrupted) calibration::
 Files (in the calibration folder):
 
 - ``convergence.png`` — best fitness so far and the mean fitness of the
-  normally terminated candidates, per generation (log scale);
+  normally terminated candidates, per generation (log scale when they span a
+  decade or more);
 - ``overlay.png`` — solid reference vs best hollow force-displacement curve at
-  each speed (CFC-filtered lines over the raw curves; the paper's Fig. 2);
+  each speed (CFC-filtered lines over the raw curves, the force axis limited
+  to 1.3 x the filtered peak when raw first-contact spikes would flatten the
+  curves; the paper's Fig. 2; the legend gives the wall shells the hollow run
+  eroded);
 - ``best_hollow/deck.k`` — the best candidate's hollow block deck at the first
   speed (``deck_<speed>kmh.k`` for further speeds) and ``parameters.json``;
 - ``table1.md`` / ``table1.csv`` — like the paper's Table 1: solid bulk
@@ -29,7 +33,7 @@ import numpy as np
 
 from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.reference import read_curve_csv
-from hollowbody.report.force_displacement import ForceDisplacement
+from hollowbody.report.force_displacement import ForceDisplacement, clip_force_axis
 
 #: Hollow wall values used when a parameter is neither calibrated nor fixed (the block's).
 WALL_DEFAULTS = {"etan": 0.0, "thickness": 1.5}
@@ -43,6 +47,13 @@ def _plt():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def use_log_scale(values: list[float], decades: float = 1.0) -> bool:
+    """A log fitness axis only when the finite positive values span at least ``decades``
+    decades (over a narrower range a log axis shows unreadable ticks like 4.8e-1)."""
+    v = [float(x) for x in values if x is not None and np.isfinite(x) and x > 0.0]
+    return bool(v) and bool(np.log10(max(v) / min(v)) >= decades)
 
 
 def plot_convergence(history: list[dict], path: str | Path, title: str = "") -> None:
@@ -60,8 +71,7 @@ def plot_convergence(history: list[dict], path: str | Path, title: str = "") -> 
             if fi:
                 ax.annotate(f"{fi} failed", (gi, bi), textcoords="offset points",
                             xytext=(0, -14), ha="center", fontsize=7)
-    positive = [v for v in best + mean if v == v and v > 0]
-    if positive:
+    if use_log_scale(best + mean):
         ax.set_yscale("log")
     ax.set_xlabel("generation")
     ax.set_ylabel("fitness (normalised RMS force difference)")
@@ -76,26 +86,35 @@ def plot_convergence(history: list[dict], path: str | Path, title: str = "") -> 
 
 
 def plot_overlay(pairs: list[tuple[float, ForceDisplacement, ForceDisplacement | None]],
-                 path: str | Path, cfc: float | None = 180.0, title: str = "") -> None:
+                 path: str | Path, cfc: float | None = 180.0, title: str = "",
+                 eroded: dict[float, int] | None = None) -> None:
     """Solid vs hollow force-displacement, one panel per speed (PNG).
 
-    pairs: [(speed km/h, solid curve, hollow curve or None)].
+    pairs: [(speed km/h, solid curve, hollow curve or None)]; eroded: {speed:
+    wall shells the hollow run deleted} (shown in the hollow curve's legend).
     """
     plt = _plt()
     n = max(1, len(pairs))
     fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 4.4), dpi=120, squeeze=False)
     for ax, (speed, solid, hollow) in zip(axes[0], pairs):
+        filtered, raw = [], []
         for curve, colour, name in ((solid, "C0", "solid"), (hollow, "C3", "hollow")):
             if curve is None or curve.displacement.size < 2:
                 continue
             ax.plot(curve.displacement, curve.force, color=colour, lw=0.5, alpha=0.35)
             sm = smoothed(curve, cfc)
+            filtered.append(sm.force)
+            raw.append(curve.force)
+            note = ""
+            if name == "hollow" and eroded and eroded.get(speed) is not None:
+                note = f", {eroded[speed]} shells eroded"
             ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
-                    label=f"{name}{f' (CFC {cfc:g})' if cfc else ''}")
+                    label=f"{name}{f' (CFC {cfc:g})' if cfc else ''}{note}")
         ax.set_xlabel("impactor displacement [mm]")
         ax.set_ylabel("contact force [kN]")
         ax.set_title(f"{speed:g} km/h")
         ax.set_xlim(left=0.0)
+        clip_force_axis(ax, filtered, raw)
         ax.grid(True, alpha=0.3)
         ax.legend()
     if title:
@@ -221,6 +240,25 @@ def overlay_pairs(data: dict, out_dir: Path) -> list[tuple[float, ForceDisplacem
     return pairs
 
 
+def best_eroded(data: dict, out_dir: Path) -> dict[float, int]:
+    """{speed: elements the best candidate's hollow run deleted}, from its run folders'
+    summary.json (speeds whose run does not report it are left out)."""
+    from hollowbody.calibrate.evaluation import eroded_count
+
+    out: dict[float, int] = {}
+    for speed, rd in zip(data["speeds_kmh"], data.get("best_run_dirs") or []):
+        found = locate_run(rd, out_dir)
+        if found is None or not (found / "summary.json").exists():
+            continue
+        try:
+            n = eroded_count(json.loads((found / "summary.json").read_text()))
+        except (json.JSONDecodeError, UnicodeDecodeError):
+            continue
+        if n is not None:
+            out[float(speed)] = n
+    return out
+
+
 def write_report(out_dir: str | Path) -> dict[str, Path]:
     """Write every report file of the calibration in ``out_dir``; returns {name: path}."""
     out = Path(out_dir)
@@ -233,7 +271,8 @@ def write_report(out_dir: str | Path) -> dict[str, Path]:
                      title=f"calibration of the hollow {data['tissue']} block")
     files["convergence"] = out / "convergence.png"
     plot_overlay(overlay_pairs(data, out), out / "overlay.png", cfc=data["fitness"]["cfc"],
-                 title=f"{data['tissue']}: solid vs calibrated hollow ({label})")
+                 title=f"{data['tissue']}: solid vs calibrated hollow ({label})",
+                 eroded=best_eroded(data, out))
     files["overlay"] = out / "overlay.png"
     deck = copy_best_deck(data, out)
     if deck is not None:

@@ -126,3 +126,20 @@ def plot(curves: list[ForceDisplacement], path: str | Path, title: str = "") -> 
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def clip_force_axis(ax, filtered: list[np.ndarray], raw: list[np.ndarray],
+                    factor: float = 1.3) -> float | None:
+    """Limit a force axis to ``factor`` x the largest filtered force, so single-cycle raw
+    contact spikes (first contact: several times the filtered peak) do not flatten the
+    curves; a note in the axes names the clipped raw maximum (kN). Returns it, or None
+    when nothing was clipped (axes left as they are)."""
+    top = max((float(np.max(f)) for f in filtered if f.size), default=0.0)
+    raw_top = max((float(np.max(r)) for r in raw if r.size), default=0.0)
+    if top <= 0.0 or raw_top <= factor * top:
+        return None
+    low = min((float(np.min(f)) for f in filtered if f.size), default=0.0)
+    ax.set_ylim(bottom=min(0.0, 1.1 * low), top=factor * top)
+    ax.text(0.99, 0.01, f"raw spikes up to {raw_top:.3g} kN clipped", transform=ax.transAxes,
+            ha="right", va="bottom", fontsize=7, color="0.4")
+    return raw_top

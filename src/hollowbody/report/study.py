@@ -4,10 +4,15 @@ Files written by :func:`write_study_report` in the study folder:
 
 - ``study.md`` / ``study.csv`` — one row per run: structure, speed (km/h),
   status and reason, end time (ms), cycles, wall time (s), element counts,
-  peak force (kN; CFC-filtered and raw), maximum impactor displacement (mm);
+  eroded elements (the hollow block deletes wall shells crushed in their
+  plane), peak force (kN; CFC-filtered and raw), maximum impactor
+  displacement (mm), energy ratio, hourglass energy (% of total) and contact
+  pass-through nodes;
   the Markdown adds the solid/hollow wall-time ratio at every speed where
   both runs ended normally;
-- ``fd_<speed>kmh.png`` — solid vs hollow at one speed;
+- ``fd_<speed>kmh.png`` — solid vs hollow at one speed (raw curves faint, the
+  force axis limited to 1.3 x the filtered peak when raw first-contact spikes
+  would flatten the curves);
 - ``fd_all.png`` — every curve (filtered), colour by speed, line style by
   structure.
 """
@@ -19,13 +24,16 @@ from pathlib import Path
 
 from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.study import load_curves
+from hollowbody.report.force_displacement import clip_force_axis
 
 COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",
-           "wall_seconds", "hexahedra", "shells", "peak_force_kN", "peak_force_raw_kN",
-           "max_displacement_mm")
+           "wall_seconds", "hexahedra", "shells", "eroded_elements", "peak_force_kN",
+           "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
+           "pass_through_nodes")
 HEADERS = ("structure", "speed [km/h]", "status", "reason", "end time [ms]", "cycles",
-           "wall [s]", "hexahedra", "shells*", "peak force [kN] (CFC)", "peak force raw [kN]",
-           "max displacement [mm]")
+           "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (CFC)",
+           "peak force raw [kN]", "max displacement [mm]", "energy ratio",
+           "hourglass [% of total]", "pass-through nodes")
 
 
 def _cell(v: object) -> str:
@@ -66,7 +74,14 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
         lines.append("Solid/hollow wall-time ratio: no speed where both runs ended normally.")
     filt = f"filtered with the SAE J211 CFC {cfc:g} filter" if cfc else "not filtered"
     lines += ["", f"\\* shells include the rigid impactor's. Peak force (CFC) is the contact "
-              f"force {filt}; raw peaks include single-cycle contact spikes."]
+              f"force {filt}; raw peaks include single-cycle contact spikes.",
+              "", "\\*\\* elements deleted during the run (erosion is on for the hollow block: "
+              "a wall shell crushed in its plane, area below 1 % of its initial area, is "
+              "removed; off for the solid block, where a collapsing element ends the run).",
+              "", "Energy ratio: total / initial energy at the end of the run. Hourglass: "
+              "hourglass energy at the end in % of the total (above ~10 % the curve is "
+              "questionable). Pass-through nodes: nodes the contacts reported pushed through "
+              "a surface (the contact lost them)."]
     return "\n".join(lines) + "\n"
 
 
@@ -93,18 +108,22 @@ def plot_speed(rows: list[dict], curves: dict, speed: float, path: str | Path,
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
     status = {(r["structure"], r["speed_kmh"]): r["status"] for r in rows}
+    filtered, raw = [], []
     for st, colour in (("solid", "C0"), ("hollow", "C3")):
         c = curves.get((st, speed))
         if c is None or c.displacement.size < 2:
             continue
         ax.plot(c.displacement, c.force, color=colour, lw=0.5, alpha=0.35)
         sm = smoothed(c, cfc)
+        filtered.append(sm.force)
+        raw.append(c.force)
         ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
                 label=f"{st} ({status.get((st, speed), '?')})")
     ax.set_xlabel("impactor displacement [mm]")
     ax.set_ylabel("contact force [kN]")
     ax.set_title(f"block test at {speed:g} km/h: solid vs hollow")
     ax.set_xlim(left=0.0)
+    clip_force_axis(ax, filtered, raw)
     ax.grid(True, alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
         ax.legend()
