@@ -32,6 +32,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="delete collapsed elements (solids: negative volume; shells: area "
                         "below 1 %%) instead of stopping (default: on for hollow, off for "
                         "solid)")
+    p.add_argument("--mass-scaling", type=float, default=0.0, metavar="DT",
+                   help="selective mass scaling: elements whose step falls below DT ms get "
+                        "mass (DT2MS = -DT; default 0 = off; e.g. 0.002 for the hollow "
+                        "block); the added mass is reported")
+    p.add_argument("--thickness-update", action="store_true",
+                   help="shell thickness follows the membrane strain (ISTUPD 1)")
     p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
     p.add_argument("--quiet", action="store_true", help="no progress display")
     g = p.add_argument_group("hollow structure (--structure hollow)")
@@ -72,7 +78,9 @@ def main(args: argparse.Namespace) -> int:
                           hollow_etan=args.etan, thickness=args.thickness, cell=args.cell,
                           elements_per_edge=args.elements_per_edge,
                           imperfection=args.imperfection,
-                          mass_preserving=not args.no_mass_preserving)
+                          mass_preserving=not args.no_mass_preserving,
+                          mass_scaling=args.mass_scaling,
+                          thickness_update=args.thickness_update)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
     if args.compare:

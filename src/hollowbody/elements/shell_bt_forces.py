@@ -428,6 +428,8 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
                 fe[i, j, 3 + c] = -(mx * e1[c] + my * e2[c] + gmx * e1h[c] + gmy * e2h[c]
                                     + gmz * e3h[c])
         dte[i] = characteristic_length(xl, yl, a, tri[i]) / c_wave
+        if update_thickness:  # stiffness grows with t, the mass stays rho A0 t0
+            dte[i] *= math.sqrt(t0[i] / thick[i])
         if (a < COLLAPSED_AREA * area0[i]
                 or e3[0] * nrm[i, 0] + e3[1] * nrm[i, 1] + e3[2] * nrm[i, 2] < 0.0):
             flip[i] = 1

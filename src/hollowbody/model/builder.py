@@ -22,6 +22,7 @@ from hollowbody.io.keyword import (
     ControlBulkViscosity,
     ControlContact,
     ControlHourglass,
+    ControlShell,
     ControlTermination,
     ControlTimestep,
     DatabaseAscii,
@@ -214,8 +215,11 @@ class _Builder:
         c = m.Controls()
         for t in self.of(ControlTermination):
             c.end_time, c.dtmin = t.endtim, t.dtmin
+            c.endmas = t.endmas if t.endmas > 0.0 else 1.0e8
         for t in self.of(ControlTimestep):
             c.tssfac, c.dt2ms, c.erode = _or(t.tssfac, 0.9), t.dt2ms, t.erode
+        for sh in self.of(ControlShell):
+            c.istupd = int(sh.istupd)
         hg = m.HourglassDef(hgid=0)
         for h in self.of(ControlHourglass):
             hg.ihq, hg.qm, hg.source = int(_or(h.ihq, 1)), _or(h.qh, 0.1), h.source

@@ -299,8 +299,10 @@ class Controls:
 
     end_time: float = 0.0  # ENDTIM, ms
     dtmin: float = 0.0  # DTMIN (fraction of the initial step; 0 = off)
+    endmas: float = 1.0e8  # ENDMAS: % of mass added by mass scaling that ends the run
     tssfac: float = 0.9
-    dt2ms: float = 0.0  # read, not used (no mass scaling)
+    dt2ms: float = 0.0  # DT2MS < 0: selective mass scaling to |DT2MS| ms (> 0 runs as < 0)
+    istupd: int = 0  # *CONTROL_SHELL ISTUPD: 1 = shell thickness follows the membrane strain
     erode: int = 0
     hourglass: HourglassDef = field(default_factory=lambda: HourglassDef(hgid=0))
     slsfac: float = 0.1

@@ -77,6 +77,10 @@ class BlockConfig:
     mass_preserving: bool = True
     self_contact: bool = True
     dtmin: float = 0.0  # *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off)
+    #: ms: selective mass scaling target (*CONTROL_TIMESTEP DT2MS = -value); 0 off
+    mass_scaling: float = 0.0
+    #: shell thickness follows the membrane strain (*CONTROL_SHELL ISTUPD 1)
+    thickness_update: bool = False
     output_dt: float = 0.02  # ms between history rows
     states: int = 25  # ParaView states over the run
     extra: dict = field(default_factory=dict)
@@ -89,6 +93,8 @@ class BlockConfig:
             raise ValueError(f"impactor must be 'cylinder' or 'sphere' (got {self.impactor!r})")
         if self.speed_kmh <= 0.0:
             raise ValueError("speed must be positive")
+        if self.mass_scaling < 0.0:
+            raise ValueError("mass scaling target must be >= 0 ms (0 = off)")
         if self.mesh <= 0.0:
             raise ValueError("mesh size must be positive")
         if not 0.0 <= self.edge_radius < 0.5 * IMPACTOR_DIAMETER:
@@ -141,6 +147,7 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     from hollowbody.io.keyword import (
         BoundarySpcSet,
         Contact,
+        ControlShell,
         ControlTermination,
         ControlTimestep,
         DatabaseAscii,
@@ -185,7 +192,10 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
                      heading="tissue-impactor", ssid=ssid, sstyp=sstyp, msid=PID_IMPACTOR,
                      mstyp=3, fs=cfg.friction, fd=cfg.friction, soft=1))
     deck.add(ControlTermination(endtim=end, dtmin=cfg.dtmin))
-    deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erodes else 0))
+    deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erodes else 0,
+                             dt2ms=-abs(cfg.mass_scaling)))
+    if cfg.thickness_update:
+        deck.add(ControlShell(istupd=1))
     for name in ("GLSTAT", "RCFORC", "NODOUT", "SPCFORC", "MATSUM"):
         deck.add(DatabaseAscii(name=name, dt=cfg.output_dt))
     deck.add(DatabaseBinaryD3plot(dt=end / cfg.states))

@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.solver.boundary import Constraints
+from hollowbody.solver.mass_scaling import MassScaling
 from hollowbody.solver.monitors import Monitors
 from hollowbody.solver.outputs import RunOutputs
 from hollowbody.solver.progress import Progress
@@ -130,6 +131,8 @@ class _Loop:
         self.m = asm.node_mass
         self.inv_m = np.where(asm.node_mass > 0.0, 1.0 / np.maximum(asm.node_mass, 1e-300), 0.0)
         self.constraints = Constraints(model, asm.bodies)
+        self.mass_scaling = MassScaling(asm.elements, model.controls.dt2ms, self.m,
+                                        asm.node_rot_inertia, self.inv_m, self.inv_i)
         self.dt = 0.0
         self.dt_next = 0.0
         self.dt_crit_elem = (-1, -1)
@@ -154,6 +157,7 @@ class _Loop:
         if self.asm.ties is not None:  # [tied] slaves start with their segments' motion
             self.asm.ties.start(self.x, self.v, self.w)
         self._forces(0.0)
+        self.mass_scaling.work = 0.0  # mass added at t = 0 is in the initial energy
         if not np.isfinite(self.dt_next) or self.dt_next <= 0.0:
             raise _Terminate(ERROR, "no deformable element sets a time step "
                              "(a model of rigid parts only cannot be run)")
@@ -163,6 +167,15 @@ class _Loop:
         self.e0 = self.kinetic_energy()
         self.out.log(f"initial time step {self.dt0:.4e} ms (element {self.dt_crit_elem[0]}, "
                      f"part {self.dt_crit_elem[1]}); initial kinetic energy {self.e0:.6g} J")
+        ms = self.mass_scaling
+        if self.model.controls.dt2ms > 0.0:
+            self.out.log("DT2MS > 0 (mass scaling of every element to one step) runs as "
+                         "DT2MS < 0: only elements below the target get mass",
+                         logging.WARNING)
+        if ms.target > 0.0:
+            self.out.log(f"mass scaling (DT2MS): elements keep a step >= {ms.target:.4e} ms "
+                         f"(run step >= {self.asm.tssfac * ms.target:.4e} ms); "
+                         f"{ms.total_added:.4g} kg added at t=0")
         self.out.record(self, force=True)
 
     # -- one cycle ------------------------------------------------------------
@@ -241,7 +254,17 @@ class _Loop:
         self.timing["contact"] += t2 - t1
         for body in self.asm.bodies:
             body.gather(self.x, f, self.mom)
+        if self.mass_scaling.active:
+            self.mass_scaling.apply(self.v, self.w if self.asm.has_rotations else None)
+            if self.mass_scaling.target > 0.0:
+                dt_crit, elem, pid = self.mass_scaling.critical_step()
         self.dt_next = self.asm.tssfac * dt_crit
+        ms = self.mass_scaling
+        if ms.target > 0.0 and ms.percent_added > self.model.controls.endmas:
+            pid = max(ms.added_mass, key=ms.added_mass.get)
+            raise _Terminate(ERROR, f"mass scaling added {ms.percent_added:.3g} % of the "
+                             f"model's mass (ENDMAS {self.model.controls.endmas:g} %), most in "
+                             f"part {pid}, at t={self.t:.6g} ms", part=pid)
         self.dt_crit_elem = (elem, pid)
         if not np.all(np.isfinite(f)):
             bad = int(np.nonzero(~np.isfinite(f).all(axis=1))[0][0])
@@ -267,7 +290,7 @@ class _Loop:
                 d, i, neg = self._element_forces(rt, 0.0 if k in done else dt)
                 done.add(k)
                 small = self.erode and self.dtmin_abs > 0.0 and \
-                    self.asm.tssfac * d < self.dtmin_abs
+                    self.mass_scaling.target <= 0.0 and self.asm.tssfac * d < self.dtmin_abs
                 if neg >= 0 and not self.erode:
                     eid = int(rt.elem_ids[neg])
                     if getattr(rt, "rotational", False):
@@ -322,16 +345,20 @@ class _Loop:
         return int(bad.size)
 
     # -- energies ---------------------------------------------------------------
+    def _half_next(self) -> float:
+        """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set)."""
+        return 0.5 * self.dt_next if np.isfinite(self.dt_next) else 0.0
+
     def node_velocity_full_step(self) -> np.ndarray:
         """v^{n+1} estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes)."""
-        return self.v + 0.5 * self.dt_next * self.f * self.inv_m[:, None]
+        return self.v + self._half_next() * self.f * self.inv_m[:, None]
 
     def kinetic_energy(self) -> float:
         v = self.node_velocity_full_step()
         ke = 0.5 * float((self.m[self.asm.deformable] *
                           (v[self.asm.deformable] ** 2).sum(axis=1)).sum())
         if self.asm.has_rotations:
-            w = self.w + 0.5 * self.dt_next * self.mom * self.inv_i[:, None]
+            w = self.w + self._half_next() * self.mom * self.inv_i[:, None]
             d = self.asm.deformable
             ke += 0.5 * float((self.asm.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
         return ke + sum(b.kinetic_energy() for b in self.asm.bodies)
@@ -342,7 +369,9 @@ class _Loop:
         hg = sum(rt.hourglass_energy for rt in self.asm.elements)
         ce = sum(c.energy for c in self.asm.contacts)
         total = ke + ie + hg + ce
-        ref = self.e0 + self.ext_work
+        ref = self.e0 + self.ext_work + self.mass_scaling.work
         ratio = total / ref if abs(ref) > 1e-30 else 1.0
         return {"kinetic": ke, "internal": ie, "hourglass": hg, "contact": ce,
-                "external_work": self.ext_work, "total": total, "energy_ratio": ratio}
+                "external_work": self.ext_work, "total": total, "energy_ratio": ratio,
+                "mass_scaling_work": self.mass_scaling.work,
+                "added_mass": self.mass_scaling.total_added}

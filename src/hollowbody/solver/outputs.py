@@ -63,7 +63,8 @@ class RunOutputs:
         self.vtk = VtkSeries(self.out, "states") if vtk else None
         self.glstat = HistoryWriter(self.out / "glstat.csv", [
             "time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]", "hourglass [J]",
-            "contact [J]", "external_work [J]", "total [J]", "energy_ratio"])
+            "contact [J]", "external_work [J]", "total [J]", "energy_ratio",
+            "added_mass [kg]"])
         self.rcforc = HistoryWriter(self.out / "rcforc.csv", [
             "time [ms]", "contact", "slave_fx [kN]", "slave_fy [kN]", "slave_fz [kN]",
             "master_fx [kN]", "master_fy [kN]", "master_fz [kN]"])
@@ -97,7 +98,7 @@ class RunOutputs:
             self.last_energies = e
             self.glstat.write([t, loop.cycle, loop.dt_next, e["kinetic"], e["internal"],
                                e["hourglass"], e["contact"], e["external_work"], e["total"],
-                               e["energy_ratio"]])
+                               e["energy_ratio"], e["added_mass"]])
             if loop.monitors is not None and loop.cycle > 0:
                 part_e, part_hg = self._part_energies(loop)
                 elem, pid = loop.dt_crit_elem
@@ -221,6 +222,7 @@ class RunOutputs:
             "energy_ratio": energies.get("energy_ratio"),
             "energies_J": energies,
             "warnings": loop.monitors.warnings if loop.monitors is not None else [],
+            "mass_scaling": loop.mass_scaling.summary(),
             "contact_pass_through": {
                 str(c.cid): {"events": c.n_pass_through, "nodes": len(c.pass_through_nodes)}
                 for c in self.asm.contacts if hasattr(c, "n_pass_through")},

@@ -148,7 +148,8 @@ def assemble(model: Model) -> Assembly:
                             part.source.line, "PART") from None
         asm.elements.append(ShellGroupRuntime(g, mat, model.sections[model.parts[g.pid].secid],
                                               model.hourglass_of(g.pid), model.curves,
-                                              model.node_x0))
+                                              model.node_x0,
+                                              thickness_update=model.controls.istupd == 1))
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:

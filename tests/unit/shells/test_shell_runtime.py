@@ -203,3 +203,15 @@ def test_integration_rules_give_the_same_membrane_state(nip, qr):
     v = np.array([[0, 0, 0], [1, 0, 0], [1, 0, 0], [0, 0, 0]], dtype=float)
     call(rt, x + 1e-4 * v, v, None, 1e-4)
     assert rt.stress[0, 0] == pytest.approx(E / (1 - NU ** 2) * 1e-5, rel=1e-4)
+
+
+def test_thickened_shell_has_a_shorter_step():
+    """With thickness update the membrane stiffness grows with t while the mass
+    (rho A0 t0) stays: the step is L_s / c * sqrt(t0 / t) (4x thicker: half)."""
+    c = math.sqrt(E / (RHO * (1 - NU ** 2)))
+    sq = np.array([[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0]], dtype=float)
+    for update, factor in ((False, 1.0), (True, 0.5)):
+        rt = runtime(sq, [[0, 1, 2, 3]], thickness_update=update)
+        rt.thickness_strain[:] = math.log(4.0)
+        (d, _, _), _, _ = call(rt, sq)
+        assert d == pytest.approx(10.0 / c * factor, rel=1e-12)

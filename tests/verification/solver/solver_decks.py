@@ -112,11 +112,13 @@ def crushed_column(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float =
 
 
 def crushed_strip(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float = 1.0,
-                  erode: int = 0, dtmin: float = 0.0) -> Deck:
+                  erode: int = 0, dtmin: float = 0.0, dt2ms: float = 0.0,
+                  istupd: int = 0) -> Deck:
     """A vertical strip of n square shells (edge h, in the xz plane, part 8,
     elastic-plastic MAT_003), bottom nodes fixed, top nodes driven down by
-    ``crush`` mm over ``end`` ms: crushed in its own plane, elements collapse."""
-    from hollowbody.io.keyword import MatPlasticKinematic
+    ``crush`` mm over ``end`` ms: crushed in its own plane, elements collapse.
+    dt2ms: *CONTROL_TIMESTEP DT2MS; istupd: *CONTROL_SHELL ISTUPD."""
+    from hollowbody.io.keyword import ControlShell, MatPlasticKinematic
 
     zs = np.arange(n + 1) * h
     x = np.array([[xx, 0.0, z] for z in zs for xx in (0.0, h)])
@@ -136,6 +138,8 @@ def crushed_strip(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float = 
     deck.add(DefineCurve(lcid=1, points=[[0.0, 0.0], [end, -crush]]))
     deck.add(PrescribedMotionSet(nsid=2, dof=3, vad=2, lcid=1))
     deck.add(ControlTermination(endtim=end, dtmin=dtmin))
-    deck.add(ControlTimestep(tssfac=0.9, erode=erode))
+    deck.add(ControlTimestep(tssfac=0.9, erode=erode, dt2ms=dt2ms))
+    if istupd:
+        deck.add(ControlShell(istupd=istupd))
     deck.add(DatabaseAscii(name="GLSTAT", dt=end / 100))
     return deck

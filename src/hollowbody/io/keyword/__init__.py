@@ -20,6 +20,7 @@ from hollowbody.io.keyword.kw_control import (
     ControlBulkViscosity,
     ControlContact,
     ControlHourglass,
+    ControlShell,
     ControlTermination,
     ControlTimestep,
     DatabaseAscii,
@@ -60,7 +61,7 @@ from hollowbody.io.keyword.writer import deck_lines, write_deck
 
 __all__ = [
     "CONTACT_TYPES", "BoundarySpcNode", "BoundarySpcSet", "Contact", "ControlBulkViscosity",
-    "ControlContact", "ControlHourglass", "ControlTermination", "ControlTimestep",
+    "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
     "DatabaseAscii", "DatabaseBinaryD3plot", "DatabaseHistoryNode", "DatabaseHistoryNodeSet",
     "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
     "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",

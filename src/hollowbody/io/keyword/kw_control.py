@@ -1,6 +1,6 @@
 """Control and output keywords.
 
-*CONTROL_TERMINATION, *CONTROL_TIMESTEP, *CONTROL_HOURGLASS,
+*CONTROL_TERMINATION, *CONTROL_TIMESTEP, *CONTROL_SHELL, *CONTROL_HOURGLASS,
 *CONTROL_CONTACT, *CONTROL_BULK_VISCOSITY, *DATABASE_<ascii> (GLSTAT,
 RCFORC, NODOUT, SPCFORC, MATSUM and other one-card ASCII databases),
 *DATABASE_BINARY_D3PLOT, *DATABASE_HISTORY_NODE(_SET). Times in ms. Cards
@@ -52,6 +52,29 @@ class ControlTimestep(SimpleKeyword):
 
     KEYWORD: ClassVar[str] = "CONTROL_TIMESTEP"
     CARDS: ClassVar[tuple[str, ...]] = ("dtinit tssfac isdo tslimt dt2ms lctm erode ms1st",)
+    N_REQUIRED: ClassVar[int] = 0
+
+
+@register
+@dataclass(kw_only=True)
+class ControlShell(SimpleKeyword):
+    """*CONTROL_SHELL card 1: WRPANG ESORT IRNXX ISTUPD THEORY BWC MITER PROJ.
+
+    Only ISTUPD is used (1: shell thickness follows the membrane strains);
+    further cards are kept as text.
+    """
+
+    wrpang: float = 20.0
+    esort: int = 0
+    irnxx: int = -1
+    istupd: int = 0
+    theory: int = 2
+    bwc: int = 2
+    miter: int = 1
+    proj: int = 0
+
+    KEYWORD: ClassVar[str] = "CONTROL_SHELL"
+    CARDS: ClassVar[tuple[str, ...]] = ("wrpang esort irnxx istupd theory bwc miter proj",)
     N_REQUIRED: ClassVar[int] = 0
 
 
