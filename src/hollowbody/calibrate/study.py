@@ -46,6 +46,7 @@ from hollowbody.calibrate.reference import read_curve_csv
 from hollowbody.calibrate.runner import SerialRunner
 from hollowbody.calibrate.simulate import EXCEPTION, LOST
 from hollowbody.errors import UserInputError
+from hollowbody.scenarios.block import impact_outcome
 
 STRUCTURES = ("solid", "hollow")
 
@@ -68,7 +69,7 @@ def _empty_row(task: StudyTask, status: str, reason: str) -> dict:
             "cycles": None, "wall_seconds": None, "hexahedra": None, "shells": None,
             "peak_force_kN": None, "peak_force_raw_kN": None, "max_displacement_mm": None,
             "eroded_elements": None, "energy_ratio": None, "hourglass_percent": None,
-            "pass_through_nodes": None, "run_dir": task.run_dir}
+            "pass_through_nodes": None, "outcome": None, "run_dir": task.run_dir}
 
 
 def run_study_task(task: StudyTask) -> dict:
@@ -98,6 +99,7 @@ def run_study_task(task: StudyTask) -> dict:
                 "energy_ratio": finite_or_none(s.get("energy_ratio")),
                 "hourglass_percent": finite_or_none(hourglass_percent(s)),
                 "pass_through_nodes": pass_through_nodes(s),
+                "outcome": impact_outcome(finite_or_none(curve.max_displacement)),
                 "run_dir": out.run_dir})
     if out.run_dir is None:
         return row

@@ -92,6 +92,13 @@ def main(args: argparse.Namespace) -> int:
           f"{res.curve.max_displacement:.2f} mm, energy ratio "
           f"{(s.get('energy_ratio') or float('nan')):.4f}, {s['cycles']} cycles, wall "
           f"{s['wall_seconds']:.1f} s")
+    outcome = s.get("impact_outcome")
+    if outcome == "through the base":
+        print(f"  WARNING: the impactor went {res.curve.max_displacement:.1f} mm, through the "
+              "block's fixed base: the curve after it reached the base is not valid")
+    elif outcome == "reached the base":
+        print("  note: the impactor crushed the block onto its fixed base (the force peak is "
+              "the base's)")
     print(f"  outputs in {out} (deck.k, force_displacement.csv/.png, summary.json, states.pvd)")
     return exit_code(s["status"])
 

@@ -25,15 +25,16 @@ from pathlib import Path
 from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.study import load_curves
 from hollowbody.report.force_displacement import clip_force_axis
+from hollowbody.scenarios.block import THROUGH_BASE
 
 COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",
            "wall_seconds", "hexahedra", "shells", "eroded_elements", "peak_force_kN",
            "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
-           "pass_through_nodes")
+           "pass_through_nodes", "outcome")
 HEADERS = ("structure", "speed [km/h]", "status", "reason", "end time [ms]", "cycles",
            "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (CFC)",
            "peak force raw [kN]", "max displacement [mm]", "energy ratio",
-           "hourglass [% of total]", "pass-through nodes")
+           "hourglass [% of total]", "pass-through nodes", "impactor***")
 
 
 def _cell(v: object) -> str:
@@ -53,7 +54,8 @@ def wall_time_ratios(rows: list[dict]) -> dict[float, float]:
             continue
         h = by.get(("hollow", v))
         if (h and r["status"] == "normal termination" and h["status"] == "normal termination"
-                and r["wall_seconds"] and h["wall_seconds"]):
+                and r["wall_seconds"] and h["wall_seconds"]
+                and THROUGH_BASE not in (r.get("outcome"), h.get("outcome"))):
             out[v] = r["wall_seconds"] / h["wall_seconds"]
     return out
 
@@ -81,7 +83,13 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
               "", "Energy ratio: total / initial energy at the end of the run. Hourglass: "
               "hourglass energy at the end in % of the total (above ~10 % the curve is "
               "questionable). Pass-through nodes: nodes the contacts reported pushed through "
-              "a surface (the contact lost them)."]
+              "a surface (the contact lost them).",
+              "", "\\*\\*\\* how far the impactor got: stopped (by the tissue, travel below "
+              "90 % of the block height), reached the base (crushed the block onto its fixed "
+              "base: the force peak is the base's), through the base (travel beyond the "
+              "height + 5 mm: fixed base nodes were pushed through the impactor's contact "
+              "surface; the curve after that is not valid and the run is left out of the "
+              "wall-time ratio)."]
     return "\n".join(lines) + "\n"
 
 

@@ -27,6 +27,7 @@ Choices (all written into the deck):
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -274,6 +275,28 @@ def _add_hollow_block(deck, cfg: BlockConfig):
     return g.nodes, ids, 0.5 * cfg.thickness, (PSET_WALLS, 2)
 
 
+#: Outcomes of a block impact by the impactor's maximum travel (see :func:`impact_outcome`)
+STOPPED, REACHED_BASE, THROUGH_BASE = "stopped", "reached the base", "through the base"
+
+
+def impact_outcome(max_displacement: float | None) -> str | None:
+    """How far the impactor got, from its maximum travel (mm).
+
+    ``stopped`` below 90 % of the block height (the tissue stopped it);
+    ``reached the base`` up to the height + 5 mm (it crushed the block onto the
+    fixed base: the force peak is the base's, not the tissue's); ``through the
+    base`` beyond (nodes of the fixed base were pushed through the impactor's
+    contact surface, which cannot happen physically: the results after that
+    moment are not valid). None when unknown.
+    """
+    if max_displacement is None or not np.isfinite(max_displacement):
+        return None
+    h = BLOCK_SIZE[2]
+    if max_displacement < 0.9 * h:
+        return STOPPED
+    return REACHED_BASE if max_displacement <= h + 5.0 else THROUGH_BASE
+
+
 @dataclass
 class BlockResult:
     """What :func:`block_impact` returns: the curve, the run summary and the folder."""
@@ -300,6 +323,13 @@ def block_impact(cfg: BlockConfig, out_dir: str | Path, vtk: bool = True,
     curve = fdr.extract(out, IMPACTOR_NODE0, CONTACT_ID, (0.0, 0.0, -1.0), side="master",
                         label=f"{cfg.structure} {cfg.tissue}")
     fdr.write_csv(curve, out / "force_displacement.csv")
+    outcome = impact_outcome(float(curve.max_displacement) if curve.time.size else None)
+    result.summary["impact_outcome"] = outcome
+    summary_path = out / "summary.json"
+    if summary_path.exists():
+        s = json.loads(summary_path.read_text())
+        s["impact_outcome"] = outcome
+        summary_path.write_text(json.dumps(s, indent=2))
     fdr.plot([curve], out / "force_displacement.png",
              title=f"block test: {cfg.structure} {tissue(cfg.tissue).name}, "
                    f"{cfg.speed_kmh:g} km/h ({result.status})")
