@@ -17,7 +17,7 @@ from hollowbody.errors import UserInputError
 def test_default_bounds():
     s = make_space(["E", "yield", "etan", "thickness"])
     assert s.lower.tolist() == [10.0, 0.5, 0.0, 0.5]
-    assert s.upper.tolist() == [400.0, 20.0, 50.0, 3.0]
+    assert s.upper.tolist() == [400.0, 40.0, 50.0, 3.0]
     assert [p.unit for p in s.parameters] == ["MPa", "MPa", "MPa", "mm"]
 
 
