@@ -268,8 +268,27 @@ class _Loop:
         self.dt_crit_elem = (elem, pid)
         if not np.all(np.isfinite(f)):
             bad = int(np.nonzero(~np.isfinite(f).all(axis=1))[0][0])
-            raise _Terminate(ERROR, f"non-finite force at node {int(self.model.node_ids[bad])} "
-                             f"at t={self.t:.6g} ms", node=int(self.model.node_ids[bad]))
+            nid = int(self.model.node_ids[bad])
+            elem, pid = self._element_at(bad)
+            where = (f" in element {elem} (part {pid})" if elem >= 0 else
+                     " (no element of the node: from a contact or a load)")
+            raise _Terminate(ERROR, f"non-finite force at node {nid}{where} at t={self.t:.6g} "
+                             "ms", node=nid, element=elem, part=pid)
+
+    def _element_at(self, node: int) -> tuple[int, int]:
+        """(element id, part id) of a live element on ``node`` with a non-finite
+        stress, else of any live element on it; (-1, -1) when none."""
+        first = (-1, -1)
+        for rt in self.asm.elements:
+            on = np.nonzero((np.asarray(rt.conn) == node).any(axis=1) & rt.alive)[0]
+            if on.size == 0:
+                continue
+            sick = on[~np.isfinite(rt.stress[on]).all(axis=1)]
+            if sick.size:
+                return int(rt.elem_ids[sick[0]]), int(rt.pid)
+            if first[0] < 0:
+                first = (int(rt.elem_ids[on[0]]), int(rt.pid))
+        return first
 
     def _element_pass(self, dt: float) -> tuple[float, int, int]:
         """Element forces of every group into f (and moments); returns the smallest

@@ -147,3 +147,28 @@ def test_user_interrupt_keeps_outputs(tmp_path, monkeypatch):
     assert res.status == "user interrupt"
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["status"] == "user interrupt" and s["cycles"] == 19
+
+
+def test_non_finite_force_names_node_element_and_part(tmp_path, monkeypatch):
+    from hollowbody.elements.solid_group import SolidGroupRuntime
+
+    orig = SolidGroupRuntime.add_forces
+    calls = {"n": 0}
+
+    def sick(self, x, v, dt, f):
+        out = orig(self, x, v, dt, f)
+        calls["n"] += 1
+        if calls["n"] == 5:  # element 3 of the cube breaks down on the 5th call
+            i = 2
+            self.stress[i] = np.nan
+            f[self.conn[i, 0]] = np.nan
+        return out
+
+    monkeypatch.setattr(SolidGroupRuntime, "add_forces", sick)
+    model = build_model(cube_and_plate(e=0.1, speed=3.0, end=1.0))
+    res = run_model(model, tmp_path, vtk=False)
+    assert res.status == "error termination"
+    rt_elem = int(model.solid_groups[0].elem_ids[2])
+    assert f"in element {rt_elem} (part " in res.reason and "non-finite force at node" in res.reason
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["error_element"] == rt_elem and s["error_node"] > 0
