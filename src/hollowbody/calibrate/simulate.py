@@ -95,10 +95,10 @@ class BlockSimulator:
     options: further :class:`~hollowbody.scenarios.block.BlockConfig` fields
     (e.g. {'friction': 0.1}); vtk: write ParaView states; dtmin: stop a run in
     error termination when its time step falls below ``dtmin`` x the initial one
-    (*CONTROL_TERMINATION DTMIN; a collapsing hollow candidate would otherwise
-    crawl for hours), applied when the block test supports it (a ``dtmin``
-    field of BlockConfig). The solver's console output (warnings) goes to
-    ``console.log`` in each run folder.
+    (*CONTROL_TERMINATION DTMIN), applied to the solid runs when the block
+    test supports it (a ``dtmin`` field of BlockConfig); hollow runs use the
+    block's default (DTMIN erosion of crushed wall elements). The solver's
+    console output (warnings) goes to ``console.log`` in each run folder.
     """
 
     tissue: str = "muscle"
@@ -122,8 +122,9 @@ class BlockSimulator:
         from hollowbody.scenarios.block import BlockConfig
 
         kw: dict[str, Any] = dict(self.options)
-        if self.dtmin and "dtmin" in {f.name for f in fields(BlockConfig)}:
-            kw.setdefault("dtmin", self.dtmin)
+        if (self.dtmin and structure == "solid"
+                and "dtmin" in {f.name for f in fields(BlockConfig)}):
+            kw.setdefault("dtmin", self.dtmin)  # hollow: the block's own DTMIN erosion
         if structure == "hollow":
             values = {**dict(self.fixed), **(params or {})}
             for name, value in values.items():
@@ -181,4 +182,7 @@ class BlockSimulator:
             d["dtmin"] = None  # not supported by the block test: not applied
         d["elements_per_edge"] = elements_per_edge(self.mesh,
                                                    dict(self.options).get("cell", CELL_MM))
+        from hollowbody.scenarios.block import DTMIN_HOLLOW
+
+        d["dtmin_hollow"] = dict(self.options).get("dtmin", DTMIN_HOLLOW)
         return {"kind": "block", "hollowbody": package_version(), **d}

@@ -32,6 +32,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="delete collapsed elements (solids: negative volume; shells: area "
                         "below 1 %%) instead of stopping (default: on for hollow, off for "
                         "solid)")
+    p.add_argument("--dtmin", type=float, default=None,
+                   help="DTMIN, fraction of the initial step: with erosion, elements whose "
+                        "step falls below it are deleted, else the run stops (default 0.05 "
+                        "for hollow, off for solid)")
     p.add_argument("--mass-scaling", type=float, default=0.0, metavar="DT",
                    help="selective mass scaling: elements whose step falls below DT ms get "
                         "mass (DT2MS = -DT; default 0 = off; e.g. 0.002 for the hollow "
@@ -79,7 +83,7 @@ def main(args: argparse.Namespace) -> int:
                           elements_per_edge=args.elements_per_edge,
                           imperfection=args.imperfection,
                           mass_preserving=not args.no_mass_preserving,
-                          mass_scaling=args.mass_scaling,
+                          mass_scaling=args.mass_scaling, dtmin=args.dtmin,
                           thickness_update=args.thickness_update)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None

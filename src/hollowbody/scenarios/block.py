@@ -47,6 +47,11 @@ PID_TISSUE, PID_IMPACTOR = 1, 2
 CONTACT_ID = 1
 IMPACTOR_NODE0 = 1_000_001
 IMPACTOR_ELEM0 = 1_000_001
+#: Default DTMIN of the hollow block (with erosion on): a wall element crushed until
+#: its step is 5 % of the initial one is deleted. Hollow muscle, 40 km/h: 5,395 cycles
+#: instead of 17,861 (erosion only at 1 % area), peak force and maximum displacement
+#: within 1 % (docs/block.md).
+DTMIN_HOLLOW = 0.05
 
 
 @dataclass
@@ -77,7 +82,10 @@ class BlockConfig:
     imperfection: float | None = None  # mm panel buckling-mode offset; None -> 0.1 thickness
     mass_preserving: bool = True
     self_contact: bool = True
-    dtmin: float = 0.0  # *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off)
+    #: *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off); None ->
+    #: DTMIN_HOLLOW for hollow blocks (with erosion: wall elements whose step falls
+    #: below it are deleted), off for solid ones
+    dtmin: float | None = None
     #: ms: selective mass scaling target (*CONTROL_TIMESTEP DT2MS = -value); 0 off
     mass_scaling: float = 0.0
     #: shell thickness follows the membrane strain (*CONTROL_SHELL ISTUPD 1)
@@ -94,6 +102,8 @@ class BlockConfig:
             raise ValueError(f"impactor must be 'cylinder' or 'sphere' (got {self.impactor!r})")
         if self.speed_kmh <= 0.0:
             raise ValueError("speed must be positive")
+        if self.dtmin is not None and not 0.0 <= self.dtmin < 1.0:
+            raise ValueError(f"dtmin must be in [0, 1) (got {self.dtmin:g})")
         if self.mass_scaling < 0.0:
             raise ValueError("mass scaling target must be >= 0 ms (0 = off)")
         if self.mesh <= 0.0:
@@ -127,6 +137,14 @@ class BlockConfig:
         as crush simulations of thin-walled structures do; in the solid block a
         negative volume is a finding (error termination)."""
         return bool(self.erode) if self.erode is not None else self.structure == "hollow"
+
+    @property
+    def dtmin_fraction(self) -> float:
+        """DTMIN used: given, else :data:`DTMIN_HOLLOW` for the hollow block, 0 (off)
+        for the solid one."""
+        if self.dtmin is not None:
+            return float(self.dtmin)
+        return DTMIN_HOLLOW if self.structure == "hollow" else 0.0
 
     def duration(self) -> float:
         """Simulated time (ms): given, or long enough for compression and rebound."""
@@ -192,7 +210,7 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=CONTACT_ID,
                      heading="tissue-impactor", ssid=ssid, sstyp=sstyp, msid=PID_IMPACTOR,
                      mstyp=3, fs=cfg.friction, fd=cfg.friction, soft=1))
-    deck.add(ControlTermination(endtim=end, dtmin=cfg.dtmin))
+    deck.add(ControlTermination(endtim=end, dtmin=cfg.dtmin_fraction))
     deck.add(ControlTimestep(tssfac=0.9, erode=1 if cfg.erodes else 0,
                              dt2ms=-abs(cfg.mass_scaling)))
     if cfg.thickness_update:
