@@ -59,6 +59,7 @@ from hollowbody.contact.geometry import project_corners
 from hollowbody.contact.law import (
     DT_FLOOR,
     ENTRY_FRACTION,
+    STIFFEN_FRACTION,
     deep_stiffness,
     penalty_force,
     pushed_through,
@@ -133,7 +134,7 @@ def segment_frames(x, seg, cen, nrm, rad2, warp):
 @njit(cache=True)
 def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k,
                  s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
-                 ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
+                 imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Contact of nodes i0 <= i < i1 of a pass (body of :func:`contact_pass`)."""
     slsfac = params[0]
     soft = params[1]
@@ -280,6 +281,12 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         vrz = v[nd, 2] - (bw0 * v[a, 2] + bw1 * v[b, 2] + bw2 * v[c, 2] + bw3 * v[dd, 2])
         vn = vrx * bnx + vry * bny + vrz * bnz
         g1 = stiffen * brel
+        if (stiffen >= 1.0 and imm[nd] != 0 and (bw0 <= 0.0 or imm[a] != 0)
+                and (bw1 <= 0.0 or imm[b] != 0) and (bw2 <= 0.0 or imm[c] != 0)
+                and (bw3 <= 0.0 or dd == c or imm[dd] != 0)):
+            # nothing in the pair can be set in motion but a rigid body (a rigid
+            # impactor on a fixed base): the stiffened zone holds the body
+            g1 = STIFFEN_FRACTION * brel
         kd = 0.0
         if bgap > g1:
             # the step, floored at DT_FLOOR of the reference step: a collapsing
@@ -345,8 +352,8 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
 
 @njit(cache=True, parallel=True)
 def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
-                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev, ft, nprev,
-                 oseg, ow, of, ogap, ofd, oentry, othru):
+                 s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev, imm, ft,
+                 nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Detect contact and compute the pair force of every node of one pass.
 
     x, v: (L, 3) float64 mm, mm/ms (local rows); dt, dtc: ms (step, SOFT=1
@@ -361,8 +368,11 @@ def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, 
     params (10,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc, vdc, friction on,
     start of the stiffened zone (fraction of the penetration at release), its
     stability limit (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`). mloc (L,) kg
-    nodal masses of the rows of x (inf: rigid), wprev (L,) summed spring weights per row in the
-    last cycle (:func:`scatter_pass`).
+    nodal masses of the rows of x (rigid-body nodes: the body's mass per node; fixed nodes:
+    inf), wprev (L,) summed spring weights per row in the last cycle
+    (:func:`scatter_pass`), imm (L,) int8 1 for rows that no contact force can move
+    (rigid-body and fixed nodes): a pair of such rows only gets the stiffened zone even
+    when params[8] >= 1 disables it.
     ft (ns, 3) kN friction state, nprev (ns, 3) contact normal of the last
     cycle (zero when not in contact; two-sided side memory) (in/out);
     oseg (ns,) int32 segment in contact or -1, ogap (ns,) mm penetration and
@@ -377,18 +387,18 @@ def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, 
     for c in prange(nch):
         _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, v, dt, dtc, nodes, n_thick, n_k,
                      n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp,
-                     ptr, cand, params, mloc, wprev, ft, nprev, oseg, ow, of, ogap, ofd,
+                     ptr, cand, params, mloc, wprev, imm, ft, nprev, oseg, ow, of, ogap, ofd,
                      oentry, othru)
 
 
 @njit(cache=True)
 def contact_pass_serial(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
                         s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
-                        ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
+                        imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Serial :func:`contact_pass` (small passes: no thread start-up)."""
     _nodes_range(0, nodes.shape[0], x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick,
                  s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc,
-                 wprev, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru)
+                 wprev, imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru)
 
 
 @njit(cache=True)

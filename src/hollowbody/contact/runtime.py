@@ -134,7 +134,12 @@ class ContactRuntime:
 
     node_mass: (n,) kg lumped nodal masses (rigid-part nodes: their nodal
     share); rigid_node: (n,) bool, True for nodes of rigid parts (SOFT=1 and
-    damping then use the deformable side's mass).
+    damping then use the deformable side's mass); fixed_node: (n,) bool, nodes
+    with every translation held by an SPC (None: none); rigid_share: (n,) kg, a
+    rigid body's mass divided by its node count on its nodes (None: rigid nodes
+    are left out of the stiffened zone's stability bound). A pair in which every
+    participant is rigid or fixed (a rigid impactor on a fixed base) always gets
+    the stiffened zone, bounded by the rigid body's mass.
 
     After each :meth:`add_forces`: ``slave_force`` (3,) kN resultant contact
     force on the slave side, ``master_force`` = -slave_force (both zero for
@@ -145,7 +150,8 @@ class ContactRuntime:
     """
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
-                 rigid_node: np.ndarray) -> None:
+                 rigid_node: np.ndarray, fixed_node: np.ndarray | None = None,
+                 rigid_share: np.ndarray | None = None) -> None:
         self.cid = cdef.cid
         self.kind = cdef.kind
         self.cdef = cdef
@@ -255,7 +261,15 @@ class ContactRuntime:
 
         nl = self.nodes.shape[0]
         #: (L,) kg nodal masses of the contact's nodes (inf: rigid-body nodes)
-        self._mloc = np.where(rigid_node[self.nodes], np.inf, node_mass[self.nodes])
+        # rigid-body nodes count with their body's mass per node in the stiffened zone's
+        # stability bound; fixed nodes (every translation held) are left out
+        fixed = (np.zeros(n, dtype=bool) if fixed_node is None
+                 else np.asarray(fixed_node, dtype=bool))
+        share = (np.full(n, np.inf) if rigid_share is None
+                 else np.asarray(rigid_share, dtype=np.float64))
+        self._mloc = np.where(rigid_node[self.nodes], share[self.nodes],
+                              np.where(fixed[self.nodes], np.inf, node_mass[self.nodes]))
+        self._imm = (rigid_node | fixed)[self.nodes].astype(np.int8)
         self._wprev = np.zeros(nl)
         self._wnew = np.zeros(nl)
         self._xl = np.zeros((nl, 3))
@@ -426,7 +440,8 @@ class ContactRuntime:
             (contact_pass if par else contact_pass_serial)(
                 self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass, p.seg,
                 p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
-                p.ptr, p.cand, self._params, self._mloc, self._wprev, p.ft, p.nprev, p.oseg,
+                p.ptr, p.cand, self._params, self._mloc, self._wprev, self._imm, p.ft, p.nprev,
+                p.oseg,
                 p.ow, p.of, p.ogap, p.ofd, p.oentry, p.othru)
             if count_through(p.othru):
                 self._record_through(p)

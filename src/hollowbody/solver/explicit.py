@@ -369,8 +369,12 @@ class _Loop:
         return 0.5 * self.dt_next if np.isfinite(self.dt_next) else 0.0
 
     def node_velocity_full_step(self) -> np.ndarray:
-        """v^{n+1} estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes)."""
-        return self.v + self._half_next() * self.f * self.inv_m[:, None]
+        """v^{n+1} estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes); degrees
+        of freedom held by an SPC stay at zero (their force is the reaction)."""
+        v = self.v + self._half_next() * self.f * self.inv_m[:, None]
+        if self.constraints.any_fixed:
+            v[self.constraints.fixed] = 0.0
+        return v
 
     def kinetic_energy(self) -> float:
         v = self.node_velocity_full_step()

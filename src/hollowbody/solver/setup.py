@@ -164,6 +164,14 @@ def assemble(model: Model) -> Assembly:
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
     rigid_node = ~asm.deformable
+    fixed_node = np.zeros((n, 3), dtype=bool)
+    for spc in model.spcs:
+        fixed_node[spc.nodes] |= np.asarray(spc.dofs, dtype=bool)[:, :3]
+    rigid_share = np.full(n, np.inf)
+    for b in asm.bodies:
+        if b.nodes.size:
+            rigid_share[b.nodes] = b.mass / b.nodes.size
     for cdef in model.contacts:
-        asm.contacts.append(ContactRuntime(cdef, model, contact_mass, rigid_node))
+        asm.contacts.append(ContactRuntime(cdef, model, contact_mass, rigid_node,
+                                           fixed_node.all(axis=1), rigid_share))
     return asm

@@ -89,3 +89,45 @@ def soft_block_and_rigid_plate(*, tissue_name: str = "fat", size: float = 60.0,
         deck.add(DatabaseAscii(name=name, dt=end / 200))
     deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
     return deck
+
+
+def rigid_plate_on_fixed_base(*, size: float = 45.0, elem: float = 7.5,
+                              base_t: float = 1.5, plate_t: float = 4.0,
+                              plate_mass: float = 5.0, speed: float = 25.0,
+                              end: float = 1.0) -> Deck:
+    """A rigid plate (``plate_mass`` kg, ``speed`` mm/ms in -z) strikes a fixed base:
+    an elastic shell plate (E 0.1 GPa, 1.5 mm) whose every node is held in x, y, z
+    -- the hollow block's bottom wall. Shell-only surface-to-surface contact (no
+    solid segments: the contact-wide stiffened zone is off), base slave, plate
+    master; the plate starts 0.1 mm above the contact reach."""
+    from hollowbody.io.keyword import MatElastic
+
+    n = max(1, int(round(size / elem)))
+    xb, qb = _plate(size, n, 0.0)
+    xp, qp = _plate(size, n, 0.5 * (base_t + plate_t) + 0.1)
+    bid = np.arange(1, xb.shape[0] + 1)
+    pid_nodes = PLATE_ID0 + np.arange(xp.shape[0])
+    deck = Deck()
+    deck.title = "rigid plate on a fixed base"
+    deck.add_nodes(bid, xb)
+    deck.add_nodes(pid_nodes, xp)
+    deck.add_shells(np.arange(1, qb.shape[0] + 1), 1, bid[qb], thickness=base_t)
+    deck.add_shells(PLATE_ID0 + np.arange(qp.shape[0]), 2, pid_nodes[qp], thickness=plate_t)
+    deck.add(Part(pid=1, secid=1, mid=1, title="base"))
+    deck.add(Part(pid=2, secid=2, mid=2, title="plate"))
+    deck.add(SectionShell(secid=1, t1=base_t, nip=3))
+    deck.add(SectionShell(secid=2, t1=plate_t, nip=2))
+    deck.add(MatElastic(mid=1, ro=5.45e-6, e=0.1, pr=0.3))
+    deck.add(MatRigid(mid=2, ro=plate_mass / (size ** 2 * plate_t), e=210.0, pr=0.3,
+                      cmo=1, con1=4, con2=7))
+    deck.add(SetNodeList(sid=1, nodes=bid.tolist()))
+    deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1))
+    deck.add(InitialVelocityGeneration(id=2, styp=2, vz=-speed))
+    deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=1, ssid=1, sstyp=3, msid=2,
+                     mstyp=3, soft=1))
+    deck.add(ControlTermination(endtim=end))
+    deck.add(ControlTimestep(tssfac=0.9))
+    for name in ("GLSTAT", "RCFORC", "NODOUT"):
+        deck.add(DatabaseAscii(name=name, dt=end / 200))
+    deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
+    return deck
