@@ -12,14 +12,15 @@ The list stays complete while every node has moved less than ``margin / 2``
 since the sort (node and segment can then approach by at most ``margin``):
 :class:`~hollowbody.contact.runtime.ContactRuntime` re-sorts every
 ``contact_sort_interval`` cycles or earlier when that bound is reached.
-Grid cells are hashed by key, never allocated as a dense grid, so a large,
-sparse model costs nothing extra.
+Grid cells are numbered densely (a counting sort groups the segments) unless
+the grid has far more cells than pairs; then the keys are sorted and searched,
+so a large, sparse model costs nothing extra.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange
 
 #: Fewer slave nodes than this: serial kernels (thread wake-up costs more;
 #: on a machine busier than its cores, OpenMP's spinning threads far more).
@@ -28,6 +29,9 @@ PARALLEL_MIN_NODES = 16384
 _CHUNK = 256
 #: Bound on grid pairs per segment before the cell size is doubled.
 _MAX_PAIRS_PER_SEGMENT = 27
+#: Grids with at most this many cells (or 4 per grid pair) are dense: segments
+#: grouped by a counting sort, a node's cell found by index.
+_DENSE_CELLS = 1 << 20
 
 
 @njit(cache=True)
@@ -112,9 +116,18 @@ def _lower_bound(a, v):
 
 
 @njit(cache=True)
-def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg,
-                 ptr, out, fill):
-    """Count (fill False: into ptr[i+1]) or write (fill True: into out) candidates."""
+def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs,
+                 ex_ptr, ex_seg, ptr, out, fill, mark):
+    """Candidates of nodes i0 <= i < i1.
+
+    fill 0: count into ptr[i + 1]; 1: write into out from ptr[i] (ptr already
+    cumulative); 2 (serial, one pass): ptr[i + 1] = ptr[i] + count, written
+    into out while it fits (the caller checks ptr[-1] <= out.size).
+    mark (S,) int32: mark[s] == i leaves segment s out for node i. The node's
+    exclusion list is stamped into it once, so a box hit costs one look-up,
+    not a scan of the list (single-surface lists hold ~20 segments per node,
+    most of them box hits); stamps need no clearing (start at -1).
+    """
     for i in range(i0, i1):
         nd = nodes[i]
         px = x[nd, 0]
@@ -124,51 +137,77 @@ def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, e
         cj = _cell(py, origin[1], h)
         ck = _cell(pz, origin[2], h)
         n = 0
+        base = ptr[i]
         if 0 <= ci < dims[0] and 0 <= cj < dims[1] and 0 <= ck < dims[2]:
+            for e in range(ex_ptr[i], ex_ptr[i + 1]):
+                mark[ex_seg[e]] = i
             key = ci + dims[0] * (cj + dims[1] * ck)
-            q = _lower_bound(skeys, key)
-            base = ptr[i]
-            while q < skeys.shape[0] and skeys[q] == key:
+            if cstart.shape[0] > 0:  # dense grid: the cell's range directly
+                q = cstart[key]
+                q1 = cstart[key + 1]
+            else:
+                q = _lower_bound(skeys, key)
+                q1 = q
+                while q1 < skeys.shape[0] and skeys[q1] == key:
+                    q1 += 1
+            while q < q1:
                 s = ssegs[q]
                 q += 1
                 if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
                         and lo[s, 2] <= pz <= hi[s, 2]):
-                    if (seg[s, 0] == nd or seg[s, 1] == nd or seg[s, 2] == nd
-                            or seg[s, 3] == nd):
+                    if (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd
+                            or seg[s, 2] == nd or seg[s, 3] == nd):
                         continue
-                    skip = False
-                    for e in range(ex_ptr[i], ex_ptr[i + 1]):
-                        if ex_seg[e] == s:
-                            skip = True
-                            break
-                    if skip:
-                        continue
-                    if fill:
+                    if fill == 1 or (fill == 2 and base + n < out.shape[0]):
                         out[base + n] = s
                     n += 1
-        if not fill:
+        if fill == 0:
             ptr[i + 1] = n
+        elif fill == 2:
+            ptr[i + 1] = base + n
 
 
 @njit(cache=True, parallel=True)
-def _cands_par(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out,
-               fill):
+def _cands_par(x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr,
+               out, fill, mark):
+    """fill 0 or 1 of :func:`_cands_range`; mark (B, S): one stamp row per block
+    of nodes (B blocks, a few per thread)."""
     n = nodes.shape[0]
-    for c in prange((n + _CHUNK - 1) // _CHUNK):
-        _cands_range(c * _CHUNK, min(n, (c + 1) * _CHUNK), x, nodes, seg, lo, hi, origin, h,
-                     dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out, fill)
+    nb = mark.shape[0]
+    per = (n + nb - 1) // nb
+    for b in prange(nb):
+        _cands_range(min(n, b * per), min(n, (b + 1) * per), x, nodes, seg, lo, hi, origin, h,
+                     dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr, out, fill, mark[b])
 
 
 @njit(cache=True)
-def _cands_ser(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, out,
-               fill):
-    _cands_range(0, nodes.shape[0], x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs,
-                 ex_ptr, ex_seg, ptr, out, fill)
+def _cands_ser(x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr,
+               out, fill, mark):
+    _cands_range(0, nodes.shape[0], x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs,
+                 ex_ptr, ex_seg, ptr, out, fill, mark)
+
+
+@njit(cache=True)
+def _counting_sort(keys, segs, cstart, ssegs):
+    """Segments grouped by cell: cstart (C + 1,) int64 zeroed on entry, out: the
+    cells' ranges in ssegs (P,) int32 (in order of keys within a cell)."""
+    for p in range(keys.shape[0]):
+        cstart[keys[p] + 1] += 1
+    for c in range(1, cstart.shape[0]):
+        cstart[c] += cstart[c - 1]
+    for p in range(keys.shape[0]):
+        k = keys[p]
+        ssegs[cstart[k]] = segs[p]
+        cstart[k] += 1
+    for c in range(cstart.shape[0] - 1, 0, -1):
+        cstart[c] = cstart[c - 1]
+    cstart[0] = 0
 
 
 def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndarray,
                 ex_ptr: np.ndarray | None = None, ex_seg: np.ndarray | None = None,
-                parallel: bool | None = None) -> tuple[np.ndarray, np.ndarray]:
+                parallel: bool | None = None, size_hint: int = 0
+                ) -> tuple[np.ndarray, np.ndarray]:
     """Candidate segments of each node.
 
     x: (L, 3) float64 mm; nodes: (ns,) int32 rows of x (the slave nodes);
@@ -177,8 +216,12 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     ex_ptr / ex_seg: optional CSR per node of segments to leave out (besides
     the segments that contain the node, always left out).
     parallel: use the threaded kernels (default: when there are at least
-    PARALLEL_MIN_NODES nodes).
-    Returns ptr (ns + 1,) int64 and cand (ptr[-1],) int32 segment indices.
+    PARALLEL_MIN_NODES nodes). size_hint: expected number of candidates (the
+    last sort's): the serial search then runs once into a buffer of about that
+    size (twice only when it overflows).
+    Returns ptr (ns + 1,) int64 and cand (ptr[-1],) int32 segment indices, each
+    node's candidates in the order of the grid's segment list (the contact
+    kernels' results do not depend on that order).
     """
     if parallel is None:
         parallel = nodes.shape[0] >= PARALLEL_MIN_NODES
@@ -207,17 +250,34 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     keys = np.empty(total, np.int64)
     segs = np.empty(total, np.int32)
     _fill_pairs(lo, hi, origin, h, dims, cnt, keys, segs)
-    order = np.argsort(keys)
-    skeys = keys[order]
-    ssegs = segs[order]
-    dummy = np.zeros(0, np.int32)
-    cands = _cands_par if parallel else _cands_ser
-    cands(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, dummy, False)
-    ptr[0] = 0
-    np.cumsum(ptr, out=ptr)
-    cand = np.empty(int(ptr[-1]), np.int32)
-    cands(x, nodes, seg, lo, hi, origin, h, dims, skeys, ssegs, ex_ptr, ex_seg, ptr, cand, True)
-    return ptr, cand
+    ncell = int(dims[0]) * int(dims[1]) * int(dims[2])
+    if ncell <= max(_DENSE_CELLS, 4 * total):  # counting sort over a dense grid
+        cstart = np.zeros(ncell + 1, np.int64)
+        ssegs = np.empty(total, np.int32)
+        _counting_sort(keys, segs, cstart, ssegs)
+        skeys = keys[:0]
+    else:  # large, sparse grid: sorted keys, binary search
+        cstart = np.zeros(0, np.int64)
+        order = np.argsort(keys)
+        skeys = keys[order]
+        ssegs = segs[order]
+    grid = (x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr)
+    if parallel:
+        mark = np.full((min(4 * get_num_threads(), max(1, ns // _CHUNK)), seg.shape[0]), -1,
+                       np.int32)
+        _cands_par(*grid, np.zeros(0, np.int32), 0, mark)
+        np.cumsum(ptr, out=ptr)
+        cand = np.empty(int(ptr[-1]), np.int32)
+        _cands_par(*grid, cand, 1, mark)
+        return ptr, cand
+    mark = np.full(seg.shape[0], -1, np.int32)
+    buf = np.empty(max(1024, 4 * ns, (5 * size_hint) // 4), np.int32)
+    _cands_ser(*grid, buf, 2, mark)
+    if int(ptr[-1]) > buf.shape[0]:
+        buf = np.empty(int(ptr[-1]), np.int32)
+        _cands_ser(*grid, buf, 1, mark)
+        return ptr, buf
+    return ptr, buf[:int(ptr[-1])].copy()
 
 
 def brute_force_candidates(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray,

@@ -22,6 +22,8 @@ from numba import njit
 #: exactly over a shared edge is accepted by both segments).
 INSIDE_TOL = 1.0e-2
 _NEWTON_ITERS = 8
+#: Last Newton step (|d xi| + |d eta|) below which a projection counts as converged
+_CONVERGED = 1.0e-6
 
 
 @njit(cache=True, inline="always")
@@ -70,8 +72,10 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3): ok False
     when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 +
-    INSIDE_TOL; xp the point x(xi, eta); n the unit normal there; w the
-    bilinear shape functions (sum 1).
+    INSIDE_TOL and the iteration converged (else xp is not the foot of the
+    normal through p, and p may be far from the segment although (p - xp) . n
+    is small: a folded wall segment); xp the point x(xi, eta); n the unit normal
+    there; w the bilinear shape functions (sum 1).
     """
     # x(xi, eta) = c0 + xi c1 + eta c2 + xi eta c3
     c0x = 0.25 * (x0 + x1 + x2 + x3)
@@ -94,6 +98,7 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
         c1x * c1x + c1y * c1y + c1z * c1z + c2x * c2x + c2y * c2y + c2z * c2z)
     tx = ty = tz = sx = sy = sz = 0.0
     rx = ry = rz = 0.0
+    step = 0.0
     for _ in range(_NEWTON_ITERS):
         tx = c1x + eta * c3x  # x_,xi
         ty = c1y + eta * c3y
@@ -130,7 +135,9 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
         elif eta < -3.0:
             eta = -3.0
         ok = True
-        if affine or abs(dxi) + abs(deta) < 1.0e-10:
+        step = abs(dxi) + abs(deta)
+        if affine or step < 1.0e-10:
+            step = 0.0
             break
     if not ok:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -147,7 +154,9 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
     if not nn > 0.0:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     lim = 1.0 + INSIDE_TOL
-    inside = abs(xi) <= lim and abs(eta) <= lim
+    # not converged (a strongly warped, folded segment): xp is no foot point, and
+    # d = (p - xp) . n is not the distance (it can be small for a node far away)
+    inside = abs(xi) <= lim and abs(eta) <= lim and step < _CONVERGED
     w0 = 0.25 * (1.0 - xi) * (1.0 - eta)
     w1 = 0.25 * (1.0 + xi) * (1.0 - eta)
     w2 = 0.25 * (1.0 + xi) * (1.0 + eta)

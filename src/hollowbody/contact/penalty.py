@@ -69,66 +69,6 @@ from hollowbody.contact.law import (
 #: Nodes (segments) per parallel work item: array arguments cost an
 #: incref/decref per call, so kernels are called per chunk, not per item.
 _CHUNK = 256
-@njit(cache=True)
-def _frames_range(s0, s1, x, seg, cen, nrm, rad2, warp):
-    for s in range(s0, s1):
-        a = seg[s, 0]
-        b = seg[s, 1]
-        c = seg[s, 2]
-        d = seg[s, 3]
-        nc = 3.0 if c == d else 4.0
-        for k in range(3):
-            tot = x[a, k] + x[b, k] + x[c, k]
-            if c != d:
-                tot += x[d, k]
-            cen[s, k] = tot / nc
-        ux = x[c, 0] - x[a, 0]
-        uy = x[c, 1] - x[a, 1]
-        uz = x[c, 2] - x[a, 2]
-        vx = x[d, 0] - x[b, 0]
-        vy = x[d, 1] - x[b, 1]
-        vz = x[d, 2] - x[b, 2]
-        nx = uy * vz - uz * vy
-        ny = uz * vx - ux * vz
-        nz = ux * vy - uy * vx
-        nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        if nn > 0.0:
-            nx /= nn
-            ny /= nn
-            nz /= nn
-        nrm[s, 0] = nx
-        nrm[s, 1] = ny
-        nrm[s, 2] = nz
-        r = 0.0
-        for j in range(4):
-            q = seg[s, j]
-            dx = x[q, 0] - cen[s, 0]
-            dy = x[q, 1] - cen[s, 1]
-            dz = x[q, 2] - cen[s, 2]
-            dd = dx * dx + dy * dy + dz * dz
-            if dd > r:
-                r = dd
-        rad2[s] = r
-        h = 0.0
-        for j in range(4):
-            q = seg[s, j]
-            e = abs((x[q, 0] - cen[s, 0]) * nx + (x[q, 1] - cen[s, 1]) * ny
-                    + (x[q, 2] - cen[s, 2]) * nz)
-            if e > h:
-                h = e
-        warp[s] = h
-
-
-@njit(cache=True)
-def segment_frames(x, seg, cen, nrm, rad2, warp):
-    """Per segment: centroid cen (S, 3), unit mean normal nrm (S, 3), squared radius
-    rad2 (S,) mm^2 (farthest corner) and warp (S,) mm (farthest corner from the
-    mean plane: the segment lies within +-warp of it).
-
-    Serial on purpose: it is ~5 % of a pass, and one parallel region less per
-    cycle matters more (thread wake-up) than splitting it.
-    """
-    _frames_range(0, seg.shape[0], x, seg, cen, nrm, rad2, warp)
 
 
 @njit(cache=True)
@@ -209,7 +149,7 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
                 if d >= reach or d <= -rel:
                     continue
                 gap = reach - d
-            if ad < best_ad:
+            if ad < best_ad or (ad == best_ad and s < best):  # ties: lowest segment
                 best_ad = ad
                 best = s
                 bgap = gap
@@ -363,7 +303,8 @@ def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, 
     (inf for rigid-body nodes).
     seg (S, 4) int32 rows of x; s_thick, s_k, s_mass as for nodes; s_depth
     (S,) mm release depth; s_two (S,) int8 1 = two-sided.
-    cen, nrm, rad2, warp: :func:`segment_frames`; ptr (ns + 1,) int64, cand int32:
+    cen, nrm, rad2, warp: :func:`~hollowbody.contact.frames.segment_frames`;
+    ptr (ns + 1,) int64, cand int32:
     candidate segments per node.
     params (10,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc, vdc, friction on,
     start of the stiffened zone (fraction of the penetration at release), its
@@ -438,22 +379,29 @@ def scatter_pass(nodes, seg, oseg, ow, of, f, fsum, wsum):
 
 
 @njit(cache=True)
-def gather(x, v, nodes, xl, vl, xsort):
-    """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return max squared
-    displacement since the last sort (xsort (L, 3))."""
+def gather(x, v, nodes, xl, vl, xsort, xnear):
+    """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return the largest
+    squared displacements (mm^2) since the last sort (positions xsort (L, 3))
+    and since the last near-list filter (xnear (L, 3))."""
     m = 0.0
+    mn = 0.0
     for i in range(nodes.shape[0]):
         g = nodes[i]
         dd = 0.0
+        dn = 0.0
         for k in range(3):
             xv = x[g, k]
             xl[i, k] = xv
             vl[i, k] = v[g, k]
             e = xv - xsort[i, k]
             dd += e * e
+            e = xv - xnear[i, k]
+            dn += e * e
         if dd > m:
             m = dd
-    return m
+        if dn > mn:
+            mn = dn
+    return m, mn
 
 
 @njit(cache=True)

@@ -46,7 +46,9 @@ from hollowbody.contact.exclusion import (
     ring_exclusions,
     tie_links,
 )
+from hollowbody.contact.frames import segment_frames, segment_frames_of
 from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
+from hollowbody.contact.nearlist import near_filter
 from hollowbody.contact.penalty import (
     contact_pass,
     contact_pass_serial,
@@ -54,7 +56,6 @@ from hollowbody.contact.penalty import (
     finish,
     gather,
     scatter_pass,
-    segment_frames,
 )
 from hollowbody.contact.stiffness import (
     node_effective_mass,
@@ -80,6 +81,10 @@ PENMAX = 0.4
 PARALLEL_MIN_NODES = 16384
 #: Re-sort when a node has moved this fraction of the bucket margin.
 _RESORT_FRACTION = 0.5
+#: Largest bucket-sort margin and the near-list margin, as fractions of the
+#: median segment size (see ContactRuntime._sort and hollowbody.contact.nearlist)
+FAR_MARGIN = 0.5
+NEAR_MARGIN = 0.1
 #: Pass-through events reported one by one (the rest are counted only).
 MAX_EVENTS = 20
 
@@ -110,6 +115,17 @@ class _Pass:
         self.nrm = np.zeros((nseg, 3))
         self.rad2 = np.zeros(nseg)
         self.warp = np.zeros(nseg)
+        #: (k,) int32 the segments in the far lists (ptr / cand), set after each sort
+        self.sact = np.zeros(0, np.int32)
+        #: near lists (hollowbody.contact.nearlist): CSR nptr / ncand, and fact the
+        #: segments in them (the only frames the kernels read)
+        self.nptr = np.zeros(ns + 1, np.int64)
+        self.ncand = np.zeros(0, np.int32)
+        self.fact = np.zeros(0, np.int32)
+        self._nsact = np.zeros(nseg, np.int32)
+        self._mark = np.zeros(nseg, np.int64)
+        self._lo = np.zeros((nseg, 3))
+        self._hi = np.zeros((nseg, 3))
         self.ptr = np.zeros(ns + 1, np.int64)
         self.cand = np.zeros(0, np.int32)
         self.ft = np.zeros((ns, 3))
@@ -276,9 +292,13 @@ class ContactRuntime:
         self._vl = np.zeros((nl, 3))
         self._xsort = np.zeros((nl, 3))
         self._xprev = np.zeros((nl, 3))
+        self._xnear = np.zeros((nl, 3))
         self._fl = np.zeros((nl, 3))
         self._fprev = np.zeros((nl, 3))
         self._margin = 0.0
+        self._near_margin = 0.0
+        self._refilter = True
+        self.n_filters = 0
         self._last_sort = -1
         self._dtc = 0.0
         self._first = True
@@ -382,8 +402,9 @@ class ContactRuntime:
                 continue
             segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp)
         lseg = float(np.median(np.concatenate([2.0 * np.sqrt(p.rad2) for p in self.passes])))
-        self._margin = min(max(2.0 * vmax * max(dt, 0.0) * self.sort_interval, 0.1 * lseg),
-                           lseg)
+        self._margin = min(max(2.0 * vmax * max(dt, 0.0) * self.sort_interval,
+                               NEAR_MARGIN * lseg), FAR_MARGIN * lseg)
+        self._near_margin = NEAR_MARGIN * lseg
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
                                         p.ex_ptr, p.ex_seg,
@@ -394,10 +415,24 @@ class ContactRuntime:
         self._last_sort = cycle
         self.n_sorts += 1
 
+    def _filter(self) -> None:
+        """Near lists of every pass from its far lists, at the current coordinates."""
+        self.n_filters += 1
+        for p in self.passes:
+            if p.seg.shape[0] == 0:
+                continue
+            m = near_filter(self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr,
+                            p.cand, p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark,
+                            self.n_filters, p._nsact)
+            p.fact = p._nsact[:m]
+        self._xnear[:] = self._xl
+        self._refilter = False
+
     def deactivate_elements(self, pid: int, elem_ids: np.ndarray) -> int:
         """Take the segments of deleted elements (part ``pid``, element ids) out
         of the contact, as LS-DYNA does for eroded elements: no node is pushed
-        by them any more (the candidate lists are rebuilt at the next call).
+        by them any more (they are taken out of the candidate lists at once; a
+        re-sort is not needed, since the lists stay complete without them).
         Returns how many segments were removed."""
         ids = np.asarray(elem_ids, dtype=np.int64)
         removed = 0
@@ -406,8 +441,9 @@ class ContactRuntime:
             if hit.any():
                 p.seg_alive[hit] = False
                 removed += int(hit.sum())
-        if removed:
-            self._last_sort = -(1 << 40)  # re-sort at the next call
+                # the lists stay complete without those segments: no re-sort
+                p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
+                self._refilter = True
         return removed
 
     def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float, cycle: int,
@@ -419,7 +455,7 @@ class ContactRuntime:
         SOFT=1 reference); cycle: cycle number; f: (n, 3) float64 kN, added to.
         """
         self.time += dt
-        md2 = gather(x, v, self.nodes, self._xl, self._vl, self._xsort)
+        md2, mdn2 = gather(x, v, self.nodes, self._xl, self._vl, self._xsort, self._xnear)
         if self._first:
             self._xprev[:] = self._xl
         if dt > 0.0 and (self._dtc <= 0.0 or dt > 1.05 * self._dtc):
@@ -427,6 +463,12 @@ class ContactRuntime:
         if (self._first or cycle - self._last_sort >= self.sort_interval
                 or md2 > (_RESORT_FRACTION * self._margin) ** 2):
             self._sort(dt, cycle)
+            for p in self.passes:
+                p.sact = _listed(p.cand, p.seg.shape[0])
+                p.ncand = np.empty(p.cand.shape[0], np.int32)
+            self._refilter = True
+        if self._refilter or mdn2 > (_RESORT_FRACTION * self._near_margin) ** 2:
+            self._filter()
         self._first = False
         self._fl[:] = 0.0
         self._wnew[:] = 0.0
@@ -436,13 +478,12 @@ class ContactRuntime:
             if p.seg.shape[0] == 0:
                 continue
             par = p.nodes.shape[0] >= self.parallel_min_nodes
-            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp)
+            segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp)
             (contact_pass if par else contact_pass_serial)(
                 self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass, p.seg,
                 p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
-                p.ptr, p.cand, self._params, self._mloc, self._wprev, self._imm, p.ft, p.nprev,
-                p.oseg,
-                p.ow, p.of, p.ogap, p.ofd, p.oentry, p.othru)
+                p.nptr, p.ncand, self._params, self._mloc, self._wprev, self._imm, p.ft,
+                p.nprev, p.oseg, p.ow, p.of, p.ogap, p.ofd, p.oentry, p.othru)
             if count_through(p.othru):
                 self._record_through(p)
             p.fsum[:] = 0.0
@@ -461,6 +502,13 @@ def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray
     kept_before = np.zeros(cand.size + 1, dtype=np.int64)
     np.cumsum(keep, out=kept_before[1:])
     return kept_before[ptr], np.ascontiguousarray(cand[keep])
+
+
+def _listed(cand: np.ndarray, nseg: int) -> np.ndarray:
+    """(k,) int32 ascending: the segments that appear in cand (of nseg)."""
+    seen = np.zeros(nseg, dtype=bool)
+    seen[cand] = True
+    return np.nonzero(seen)[0].astype(np.int32)
 
 
 def _tied_links(model: Model, loc: np.ndarray, x0: np.ndarray) -> np.ndarray:

@@ -66,3 +66,30 @@ def test_warped_quad_newton_matches_dense_search():
         r = p - np.array([qx, qy, qz])
         assert np.linalg.norm(np.cross(r, [nx, ny, nz])) < 1e-8
         np.testing.assert_allclose(np.array(w) @ x, [qx, qy, qz], atol=1e-12)
+
+
+def test_folded_quad_far_point_is_not_inside():
+    """A wall segment folded by the crush (edges 12 mm, two corners 1 mm apart)
+    and a node 9.6 mm from its nearest surface point: Newton does not converge
+    there, and (p - xp) . n is only 0.8 mm. Taken as inside, that gave a false
+    contact (hollow block, 70 km/h) that depended on which segments the bucket
+    sort listed. The projection must say "not inside"; every point the
+    projection does accept is a foot point (p - xp along n, |p - xp| = |d|)."""
+    x = np.array([[-35.993, -36.171, 22.978], [-29.576, -39.538, 12.938],
+                  [-30.552, -38.699, 12.912], [-35.745, -35.695, 27.803]])
+    seg = np.array([[0, 1, 2, 3]], np.int32)
+    ok, inside, *_ = project_segment(-23.850, -38.160, 17.768, x, seg, 0)
+    assert not (ok and inside)
+    rng = np.random.default_rng(11)
+    lo, hi = x.min(axis=0) - 10.0, x.max(axis=0) + 10.0
+    accepted = 0
+    for p in rng.uniform(lo, hi, size=(2000, 3)):
+        ok, inside, qx, qy, qz, nx, ny, nz, *w = project_segment(p[0], p[1], p[2], x, seg, 0)
+        if not (ok and inside):
+            continue
+        accepted += 1
+        r = p - np.array([qx, qy, qz])
+        # tolerance: the last accepted Newton step (1e-6 in xi, eta) times the
+        # segment's size (~12 mm) -> ~1e-5 mm of tangential residual
+        assert np.linalg.norm(np.cross(r, [nx, ny, nz])) < 1e-4
+    assert accepted > 50
