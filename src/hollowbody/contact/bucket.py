@@ -32,6 +32,7 @@ _MAX_PAIRS_PER_SEGMENT = 27
 #: Grids with at most this many cells (or 4 per grid pair) are dense: segments
 #: grouped by a counting sort, a node's cell found by index.
 _DENSE_CELLS = 1 << 20
+_DENSE_PER_PAIR = 4
 
 
 @njit(cache=True)
@@ -251,7 +252,7 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     segs = np.empty(total, np.int32)
     _fill_pairs(lo, hi, origin, h, dims, cnt, keys, segs)
     ncell = int(dims[0]) * int(dims[1]) * int(dims[2])
-    if ncell <= max(_DENSE_CELLS, 4 * total):  # counting sort over a dense grid
+    if ncell <= max(_DENSE_CELLS, _DENSE_PER_PAIR * total):  # counting sort, dense grid
         cstart = np.zeros(ncell + 1, np.int64)
         ssegs = np.empty(total, np.int32)
         _counting_sort(keys, segs, cstart, ssegs)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hollowbody.contact import bucket
 from hollowbody.contact.bucket import brute_force_candidates, bucket_sort
 
 
@@ -22,9 +23,16 @@ def _random_mesh(rng, n_nodes, n_seg, spread):
     return x, seg
 
 
+@pytest.mark.parametrize("grid", ["dense", "sparse"])
 @pytest.mark.parametrize("parallel", [False, True])
 @pytest.mark.parametrize("seed", range(5))
-def test_bucket_sort_equals_brute_force(seed, parallel):
+def test_bucket_sort_equals_brute_force(seed, parallel, grid, monkeypatch):
+    """Both grid layouts (dense: counting sort; sparse: sorted keys), serial and
+    threaded, give exactly the brute-force lists; the serial one-pass buffer is
+    made too small on purpose (size_hint 0 and 1024 entries for ~10^4 pairs)."""
+    if grid == "sparse":
+        monkeypatch.setattr(bucket, "_DENSE_CELLS", 0)
+        monkeypatch.setattr(bucket, "_DENSE_PER_PAIR", 0)
     rng = np.random.default_rng(seed)
     x, seg = _random_mesh(rng, 400, 300, spread=[50.0, 20.0, 5.0][seed % 3])
     grow = rng.uniform(0.0, 2.0, size=seg.shape[0])
@@ -107,3 +115,19 @@ def test_runtime_with_resorting_matches_all_pairs_search():
         x += dt * v
         v += rng.normal(0.0, 0.05, size=(n, 3))
     assert active > 0 and a.n_sorts > 150 // 25
+
+
+def test_one_pass_buffer_overflow_and_hint_agree():
+    """The serial search writes into a buffer sized from size_hint; when that is
+    too small it runs again into an exact one. Lists are the same either way."""
+    rng = np.random.default_rng(2)
+    x, seg = _random_mesh(rng, 300, 400, spread=8.0)
+    nodes = np.arange(300, dtype=np.int32)
+    grow = np.full(400, 3.0)
+    small = bucket_sort(x, nodes, seg, grow, parallel=False, size_hint=0)
+    assert small[1].size > 1024 + 4 * 300  # the first buffer overflowed
+    big = bucket_sort(x, nodes, seg, grow, parallel=False, size_hint=10 ** 6)
+    par = bucket_sort(x, nodes, seg, grow, parallel=True)
+    for p, c in (big, par):
+        np.testing.assert_array_equal(p, small[0])
+        np.testing.assert_array_equal(np.sort(c), np.sort(small[1]))

@@ -1,0 +1,178 @@
+"""When ContactRuntime rebuilds its lists, and that its lists never change a force.
+
+The far lists (bucket sort) are rebuilt when a node of the contact has moved
+half the far margin, the near lists (nearlist.near_filter) when it has moved
+half the near margin, neither when elements erode. Every check here compares
+with a reference that lists every segment for every node (``AllPairs``): the
+forces must be the same to the last bit (the kernels' results do not depend on
+which or in what order candidates are listed, as long as no pair that can be
+in contact is missing).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.contact import ContactRuntime
+from hollowbody.contact.examples import (
+    PartSpec,
+    assemble_model,
+    block_mesh,
+    part_contact,
+    plate_mesh,
+)
+from hollowbody.contact.runtime import _drop_dead
+from hollowbody.model.model import ContactDef
+from hollowbody.model.model import SurfaceRef as Ref
+
+
+class AllPairs(ContactRuntime):
+    """Reference: every segment is a candidate of every node (but the node's own
+    segments and its exclusion list, as in the bucket sort); never re-sorted."""
+
+    def _sort(self, dt, cycle):
+        for p in self.passes:
+            lists = []
+            for i, nd in enumerate(p.nodes):
+                out = set(p.ex_seg[p.ex_ptr[i]:p.ex_ptr[i + 1]].tolist())
+                out |= set(np.nonzero(np.any(p.seg == nd, axis=1))[0].tolist())
+                lists.append([s for s in range(p.seg.shape[0]) if s not in out])
+            p.ptr = np.zeros(len(lists) + 1, np.int64)
+            p.ptr[1:] = np.cumsum([len(c) for c in lists])
+            p.cand = np.array([s for c in lists for s in c], dtype=np.int32)
+            if not p.seg_alive.all():
+                p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
+        self._margin = np.inf
+        self._last_sort = cycle
+        self.n_sorts += 1
+
+
+def _block_over_plate(gap: float, sort_interval: int, thickness: float = 2.0):
+    xb, cb = block_mesh((3, 3, 2), (12.0, 12.0, 8.0), (-6.0, -6.0, gap))
+    xp, cp = plate_mesh((6, 6), (30.0, 30.0), (-15.0, -15.0, 0.0))
+    model = assemble_model([PartSpec(1, xb, cb), PartSpec(2, xp, cp, "shell", "elastic",
+                                                          {"E": 0.1, "PR": 0.3}, 1e-6,
+                                                          thickness)],
+                           sort_interval=sort_interval)
+    return model, xb.shape[0]
+
+
+def _pair(model, kind="surface_to_surface", **kw):
+    n = model.n_nodes
+    mass = np.full(n, 1e-3)
+    if kind == "single_surface":
+        cd = part_contact(1, kind, [1, 2], None, **kw)
+    else:
+        cd = part_contact(1, kind, [1], [2], **kw)
+    return (ContactRuntime(cd, model, mass, np.zeros(n, bool)),
+            AllPairs(cd, model, mass, np.zeros(n, bool)))
+
+
+def _step_both(a, b, x, v, dt, cycle):
+    n = x.shape[0]
+    fa = np.zeros((n, 3))
+    fb = np.zeros((n, 3))
+    a.add_forces(x, v, dt, cycle, fa)
+    b.add_forces(x, v, dt, cycle, fb)
+    np.testing.assert_array_equal(fa, fb)
+    assert a.n_active == b.n_active and a.energy == b.energy
+    return fa
+
+
+def test_fast_block_is_caught_before_the_sort_interval():
+    """A block 30 mm above a plate closes at 1 mm per cycle: it touches after ~28
+    cycles, long before the 100-cycle sort interval. The displacement bounds
+    rebuild the lists in time (far lists several times, near lists more often),
+    and every cycle's forces equal the all-pairs search."""
+    model, nb = _block_over_plate(30.0, sort_interval=100)
+    a, b = _pair(model)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:nb, 2] = -100.0  # mm/ms, 1 mm per cycle at dt = 0.01 ms
+    first = None
+    for cycle in range(36):
+        _step_both(a, b, x, v, 0.01, cycle)
+        if a.n_active and first is None:
+            first = cycle
+        x += 0.01 * v
+    assert first is not None and 25 <= first <= 32
+    assert a.n_sorts >= 3 and a.n_filters > a.n_sorts
+
+
+def test_slow_approach_between_near_list_filters():
+    """A block closing slowly (0.05 mm per cycle) on a 6 mm thick plate (its
+    capture distance is then the contact distance, 3 mm: no slack): the near
+    lists are rebuilt every few cycles only, so the first contacts start
+    between two filters, from pairs only the near margin kept listed; forces
+    equal the all-pairs search in every cycle."""
+    model, nb = _block_over_plate(5.5, sort_interval=100, thickness=6.0)
+    a, b = _pair(model)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:nb, 2] = -5.0
+    first = None
+    for cycle in range(60):
+        _step_both(a, b, x, v, 0.01, cycle)
+        if a.n_active and first is None:
+            first = cycle
+        x += 0.01 * v
+    assert first is not None
+    assert a.n_sorts <= 3 and a.n_filters >= 3 * a.n_sorts
+
+
+def test_random_motion_single_surface_with_friction_and_erosion():
+    """Random motion of a block on a plate (single surface, friction), with
+    segments deleted part-way: forces equal the all-pairs search in every cycle.
+    Deleting segments does not re-sort: the sorts happen in the same cycles as
+    in a twin without the deletion (they depend on the motion only)."""
+    rng = np.random.default_rng(7)
+    model, nb = _block_over_plate(0.5, sort_interval=10)
+    a, b = _pair(model, "single_surface", fs=0.2, fd=0.1)
+    twin, _ = _pair(model, "single_surface", fs=0.2, fd=0.1)
+    x = model.node_x0.copy()
+    v = rng.normal(0.0, 0.3, size=x.shape)
+    v[:nb, 2] -= 0.5
+    active = 0
+    plate = model.shell_groups[0].elem_ids
+    for cycle in range(120):
+        if cycle == 65:  # between two interval sorts (every 10 cycles)
+            dead = plate[::3]
+            assert a.deactivate_elements(2, dead) == b.deactivate_elements(2, dead) > 0
+        _step_both(a, b, x, v, 0.02, cycle)
+        twin.add_forces(x, v, 0.02, cycle, np.zeros_like(x))
+        assert a.n_sorts == twin.n_sorts
+        active += a.n_active
+        x += 0.02 * v
+        v += rng.normal(0.0, 0.05, size=x.shape)
+    assert active > 0 and a.n_sorts > 1
+    for p in a.passes:  # near lists are sublists of the far lists
+        for i in range(p.nodes.shape[0]):
+            near = set(p.ncand[p.nptr[i]:p.nptr[i + 1]].tolist())
+            assert near <= set(p.cand[p.ptr[i]:p.ptr[i + 1]].tolist())
+
+
+def test_node_over_a_shared_edge_takes_the_lower_segment_in_any_list_order():
+    """A node exactly over the edge shared by two coplanar segments is inside
+    both (within the projection tolerance) at the same distance; it is given
+    the lower-numbered one whatever the order of its candidate list, so the
+    result does not depend on the bucket sort."""
+    xp, cp = plate_mesh((2, 1), (20.0, 10.0), (-10.0, -5.0, 0.0))
+    pts = np.array([[0.0, 0.0, 0.3]])
+    model = assemble_model([PartSpec(1, pts, np.zeros((0, 8), np.int32)),
+                            PartSpec(2, xp, cp, "shell", "elastic", {"E": 0.1, "PR": 0.3},
+                                     1e-6, 1.0)])
+    cd = ContactDef(cid=1, kind="nodes_to_surface", slave=Ref(kind="nodes", nodes=np.array([0])),
+                    master=Ref(kind="parts", pids=[2]))
+    n = model.n_nodes
+    got = []
+    for reverse in (False, True):
+        rt = ContactRuntime(cd, model, np.full(n, 1e-3), np.zeros(n, bool))
+        f = np.zeros((n, 3))
+        rt.add_forces(model.node_x0, np.zeros((n, 3)), 0.01, 0, f)
+        p = rt.passes[0]
+        assert sorted(p.ncand[:p.nptr[1]].tolist()) == [0, 1]
+        if reverse:
+            p.ncand[:2] = p.ncand[:2][::-1].copy()
+        rt.add_forces(model.node_x0, np.zeros((n, 3)), 0.01, 1, f)
+        got.append(int(p.oseg[0]))
+    assert got == [0, 0]
