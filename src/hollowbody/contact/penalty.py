@@ -69,6 +69,12 @@ from hollowbody.contact.law import (
 #: Nodes (segments) per parallel work item: array arguments cost an
 #: incref/decref per call, so kernels are called per chunk, not per item.
 _CHUNK = 256
+#: mm: slack of the bound |d| >= |(p - cen) . n| - 1.05 warp (the segment lies
+#: within +-warp of its mean plane, and within +-1.0201 warp when its natural
+#: coordinates reach 1 + INSIDE_TOL; at a converged foot point |d| = |p - x_p|),
+#: for round-off and the Newton tolerance: a candidate whose bound is beyond the
+#: best distance so far cannot win and is not projected.
+_BOUND_EPS = 1.0e-6
 
 
 @njit(cache=True)
@@ -101,7 +107,22 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
-        for q in range(ptr[i], ptr[i + 1]):
+        # the segment in contact last cycle first (when listed): its distance then
+        # lets the bound below skip the projection onto most other candidates
+        prev = oseg[i]
+        qf = -1
+        if prev >= 0:
+            for q in range(ptr[i], ptr[i + 1]):
+                if cand[q] == prev:
+                    qf = q
+                    break
+        for k in range(-1 if qf >= 0 else 0, ptr[i + 1] - ptr[i]):
+            if k < 0:
+                q = qf
+            else:
+                q = ptr[i] + k
+                if q == qf:
+                    continue
             s = cand[q]
             reach = 0.5 * (tn + s_thick[s])
             two = s_two[s] != 0
@@ -114,6 +135,8 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
             r2 = rad2[s]
             if abs(dn) > lim + warp[s]:
                 continue
+            if abs(dn) - 1.05 * warp[s] - _BOUND_EPS > best_ad:
+                continue  # every point of s is farther than the best: it cannot win
             if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
                 continue
             a = seg[s, 0]
@@ -161,7 +184,6 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
-        prev = oseg[i]
         # a fresh contact starts the stiffening from its first gap (no increment)
         gprev = ogap[i] if prev >= 0 else bgap
         othru[i] = -1
