@@ -101,6 +101,7 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
         mx = nprev[i, 0]
         my = nprev[i, 1]
         mz = nprev[i, 2]
+        fresh = mx == 0.0 and my == 0.0 and mz == 0.0
         best = -1
         best_ad = 1.0e300
         bgap = 0.0
@@ -127,7 +128,9 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
             reach = 0.5 * (tn + s_thick[s])
             two = s_two[s] != 0
             rel = release_depth(s_depth[s], reach, two)
-            lim = max(reach, rel)
+            # largest |d| that can be accepted: a node not in contact last cycle (no
+            # remembered normal) meets a two-sided segment only within its reach
+            lim = reach if (two and fresh) else max(reach, rel)
             rx = px - cen[s, 0]
             ry = py - cen[s, 1]
             rz = pz - cen[s, 2]

@@ -78,8 +78,9 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
     lines += ["", f"\\* shells include the rigid impactor's. Peak force (CFC) is the contact "
               f"force {filt}; raw peaks include single-cycle contact spikes.",
               "", "\\*\\* elements deleted during the run (erosion is on for the hollow block: "
-              "a wall shell crushed in its plane, area below 1 % of its initial area, is "
-              "removed; off for the solid block, where a collapsing element ends the run).",
+              "a wall shell crushed until its time step is below DTMIN, 5 % of the initial "
+              "step by default, or to 1 % of its area, is removed; off for the solid block, "
+              "where a collapsing element ends the run).",
               "", "Energy ratio: total / initial energy at the end of the run. Hourglass: "
               "hourglass energy at the end in % of the total (above ~10 % the curve is "
               "questionable). Pass-through nodes: nodes the contacts reported pushed through "
