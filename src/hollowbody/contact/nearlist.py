@@ -22,7 +22,7 @@ about a third of the far lists' pairs.
 
 from __future__ import annotations
 
-from numba import njit
+from numba import njit, prange
 
 
 @njit(cache=True)
@@ -72,4 +72,69 @@ def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
                     nsact[m] = s
                     m += 1
         nptr[i + 1] = n
+    return m
+
+
+_CHUNK = 256
+
+
+@njit(cache=True)
+def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
+    for j in range(j0, j1):
+        s = sact[j]
+        for k in range(3):
+            a = x[seg[s, 0], k]
+            b = a
+            for c in range(1, 4):
+                v = x[seg[s, c], k]
+                a = min(a, v)
+                b = max(b, v)
+            lo[s, k] = a - grow[s]
+            hi[s, k] = b + grow[s]
+
+
+@njit(cache=True)
+def _near_rows(i0, i1, x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, fill):
+    """Count (fill False: into nptr[i + 1]) or write (from nptr[i]) near pairs of rows i0..i1."""
+    for i in range(i0, i1):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        n = nptr[i] if fill else 0
+        for q in range(ptr[i], ptr[i + 1]):
+            s = cand[q]
+            if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
+                    and lo[s, 2] <= pz <= hi[s, 2]):
+                if fill:
+                    ncand[n] = s
+                    mark[s] = stamp  # every writer writes the same value
+                n += 1
+        if not fill:
+            nptr[i + 1] = n
+
+
+@njit(cache=True, parallel=True)
+def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
+                         stamp, nsact):
+    """Threaded :func:`near_filter` (same lists; nsact in ascending order)."""
+    ns = nodes.shape[0]
+    nk = sact.shape[0]
+    for c in prange((nk + _CHUNK - 1) // _CHUNK):
+        _boxes_of(c * _CHUNK, min(nk, (c + 1) * _CHUNK), x, seg, grow, sact, lo, hi)
+    nch = (ns + _CHUNK - 1) // _CHUNK
+    for c in prange(nch):
+        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
+                   ncand, mark, stamp, False)
+    nptr[0] = 0
+    for i in range(ns):
+        nptr[i + 1] += nptr[i]
+    for c in prange(nch):
+        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
+                   ncand, mark, stamp, True)
+    m = 0
+    for s in range(mark.shape[0]):
+        if mark[s] == stamp:
+            nsact[m] = s
+            m += 1
     return m

@@ -48,7 +48,7 @@ from hollowbody.contact.exclusion import (
 )
 from hollowbody.contact.frames import segment_frames, segment_frames_of
 from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
-from hollowbody.contact.nearlist import near_filter
+from hollowbody.contact.nearlist import near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
     contact_pass,
     contact_pass_serial,
@@ -421,9 +421,10 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            m = near_filter(self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr,
-                            p.cand, p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark,
-                            self.n_filters, p._nsact)
+            par = p.nodes.shape[0] >= self.parallel_min_nodes
+            m = (near_filter_parallel if par else near_filter)(
+                self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.sact,
+                p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
             p.fact = p._nsact[:m]
         self._xnear[:] = self._xl
         self._refilter = False

@@ -12,6 +12,7 @@ in contact is missing).
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from hollowbody.contact import ContactRuntime
 from hollowbody.contact.examples import (
@@ -120,14 +121,18 @@ def test_slow_approach_between_near_list_filters():
     assert a.n_sorts <= 3 and a.n_filters >= 3 * a.n_sorts
 
 
-def test_random_motion_single_surface_with_friction_and_erosion():
+@pytest.mark.parametrize("parallel", [False, True])
+def test_random_motion_single_surface_with_friction_and_erosion(parallel):
     """Random motion of a block on a plate (single surface, friction), with
-    segments deleted part-way: forces equal the all-pairs search in every cycle.
+    segments deleted part-way: forces equal the all-pairs search in every cycle,
+    with the serial and the threaded kernels (sort, near filter, pass).
     Deleting segments does not re-sort: the sorts happen in the same cycles as
     in a twin without the deletion (they depend on the motion only)."""
     rng = np.random.default_rng(7)
     model, nb = _block_over_plate(0.5, sort_interval=10)
     a, b = _pair(model, "single_surface", fs=0.2, fd=0.1)
+    if parallel:
+        a.parallel_min_nodes = 0
     twin, _ = _pair(model, "single_surface", fs=0.2, fd=0.1)
     x = model.node_x0.copy()
     v = rng.normal(0.0, 0.3, size=x.shape)
