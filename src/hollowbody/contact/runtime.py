@@ -77,8 +77,10 @@ from hollowbody.model.model import ContactDef, Model
 PENMAX = 0.4
 #: Passes with fewer nodes than this run serially: a pass costs ~0.1-0.2 us per
 #: node, so below this the thread wake-up is not worth it (and on a machine
-#: busier than its cores OpenMP's spinning threads make parallel far slower).
-PARALLEL_MIN_NODES = 16384
+#: busier than its cores OpenMP's spinning threads make parallel far slower: set
+#: OMP_WAIT_POLICY=passive there). Hollow block at 70 km/h, 2 threads, idle
+#: machine: contact 16.2 s with 16384 (all serial), 12.2 s with 4096.
+PARALLEL_MIN_NODES = 4096
 #: Re-sort when a node has moved this fraction of the bucket margin.
 _RESORT_FRACTION = 0.5
 #: Largest bucket-sort margin and the near-list margin, as fractions of the
