@@ -67,8 +67,11 @@ def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
 
 
 @njit(cache=True)
-def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
-    """Project point p onto the bilinear quadrilateral with corners 0..3 (scalars, mm).
+def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0=0.0,
+                 eta0=0.0):
+    """Project point p onto the bilinear quadrilateral with corners 0..3 (scalars, mm),
+    Newton from natural coordinates (xi0, eta0) (default the centre; the contact
+    kernel starts a node's last contact segment from its last contact point).
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3): ok False
     when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 +
@@ -90,8 +93,8 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
     c3x = 0.25 * (x0 - x1 + x2 - x3)
     c3y = 0.25 * (y0 - y1 + y2 - y3)
     c3z = 0.25 * (z0 - z1 + z2 - z3)
-    xi = 0.0
-    eta = 0.0
+    xi = xi0
+    eta = eta0
     ok = False
     # parallelogram (x_,xi,eta = 0): the map is affine, one Newton step is exact
     affine = (c3x * c3x + c3y * c3y + c3z * c3z) <= 1.0e-24 * (
@@ -168,7 +171,8 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
 
 
 @njit(cache=True, inline="always")
-def project_corners(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, tri):
+def project_corners(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, tri, xi0=0.0,
+                    eta0=0.0):
     """Project p onto a segment given by its corner coordinates (tri: N4 == N3).
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3).
@@ -177,7 +181,7 @@ def project_corners(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, 
         ok, inside, qx, qy, qz, nx, ny, nz, wa, wb, wc = project_triangle(
             px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2)
         return ok, inside, qx, qy, qz, nx, ny, nz, wa, wb, wc, 0.0
-    return project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3)
+    return project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0, eta0)
 
 
 @njit(cache=True)

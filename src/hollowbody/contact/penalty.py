@@ -146,9 +146,14 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
             b = seg[s, 1]
             c = seg[s, 2]
             dd = seg[s, 3]
+            xi0 = 0.0
+            eta0 = 0.0
+            if k < 0:  # last cycle's segment: Newton from last cycle's contact point
+                xi0 = ow[i, 1] + ow[i, 2] - ow[i, 0] - ow[i, 3]
+                eta0 = ow[i, 2] + ow[i, 3] - ow[i, 0] - ow[i, 1]
             ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
                 px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
-                x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd)
+                x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd, xi0, eta0)
             if not (ok and inside):
                 continue
             d = (px - qx) * nx + (py - qy) * ny + (pz - qz) * nz

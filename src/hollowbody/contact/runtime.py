@@ -36,6 +36,7 @@ allocated here, none per cycle (the bucket sort, every
 from __future__ import annotations
 
 import numpy as np
+from numba import get_num_threads
 
 from hollowbody.contact.bucket import bucket_sort
 from hollowbody.contact.checks import clean_surface, segment_elements
@@ -410,12 +411,18 @@ class ContactRuntime:
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
                                         p.ex_ptr, p.ex_seg,
-                                        p.nodes.shape[0] >= self.parallel_min_nodes)
+                                        self._threaded(p))
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
         self._xsort[:] = self._xl
         self._last_sort = cycle
         self.n_sorts += 1
+
+    def _threaded(self, p: _Pass) -> bool:
+        """Use the threaded kernels for pass p: it has parallel_min_nodes nodes or
+        more and numba has more than one thread (with one, the threaded near
+        filter would only count and fill in two sweeps)."""
+        return p.nodes.shape[0] >= self.parallel_min_nodes and get_num_threads() > 1
 
     def _filter(self) -> None:
         """Near lists of every pass from its far lists, at the current coordinates."""
@@ -423,7 +430,7 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            par = p.nodes.shape[0] >= self.parallel_min_nodes
+            par = self._threaded(p)
             m = (near_filter_parallel if par else near_filter)(
                 self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.sact,
                 p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
@@ -480,7 +487,7 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            par = p.nodes.shape[0] >= self.parallel_min_nodes
+            par = self._threaded(p)
             segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp)
             (contact_pass if par else contact_pass_serial)(
                 self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass, p.seg,
