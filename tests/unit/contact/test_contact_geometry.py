@@ -93,3 +93,21 @@ def test_folded_quad_far_point_is_not_inside():
         # segment's size (~12 mm) -> ~1e-5 mm of tangential residual
         assert np.linalg.norm(np.cross(r, [nx, ny, nz])) < 1e-4
     assert accepted > 50
+
+
+def test_warm_start_finds_the_same_foot_point():
+    """The contact kernel starts Newton for a node's last segment from its last
+    contact point: from there the iteration must reach the foot point the
+    cold start (the centre) reaches, to round-off (1e-9 mm; the iteration stops
+    once its step is below 1e-10 in natural coordinates)."""
+    from hollowbody.contact.geometry import project_quad
+
+    rng = np.random.default_rng(5)
+    c = np.array([[0, 0, 0], [1, 0, 0.2], [1.1, 1, -0.1], [0, 0.9, 0.3]], float).ravel()
+    for _ in range(50):
+        p = np.array([rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9), rng.uniform(-0.3, 0.3)])
+        cold = project_quad(*p, *c)
+        xi0, eta0 = rng.uniform(-1.0, 1.0, size=2)
+        warm = project_quad(*p, *c, xi0, eta0)
+        assert cold[0] and cold[1] and warm[0] and warm[1]
+        np.testing.assert_allclose(warm[2:5], cold[2:5], atol=1e-9)
