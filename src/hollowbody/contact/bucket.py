@@ -35,20 +35,24 @@ _DENSE_CELLS = 1 << 20
 _DENSE_PER_PAIR = 4
 
 
+@njit(cache=True, inline="always")
+def segment_box(s, x, seg, grow, lo, hi):
+    """Box of segment s: lo[s] / hi[s] = min / max of its corners -/+ grow[s] (mm)."""
+    for k in range(3):
+        a = x[seg[s, 0], k]
+        b = a
+        for j in range(1, 4):
+            v = x[seg[s, j], k]
+            a = min(a, v)
+            b = max(b, v)
+        lo[s, k] = a - grow[s]
+        hi[s, k] = b + grow[s]
+
+
 @njit(cache=True)
 def _boxes_range(s0, s1, x, seg, grow, lo, hi):
     for s in range(s0, s1):
-        for k in range(3):
-            a = x[seg[s, 0], k]
-            b = a
-            for j in range(1, 4):
-                v = x[seg[s, j], k]
-                if v < a:
-                    a = v
-                if v > b:
-                    b = v
-            lo[s, k] = a - grow[s]
-            hi[s, k] = b + grow[s]
+        segment_box(s, x, seg, grow, lo, hi)
 
 
 @njit(cache=True, parallel=True)

@@ -24,6 +24,17 @@ from __future__ import annotations
 
 from numba import njit, prange
 
+from hollowbody.contact.bucket import segment_box
+
+_CHUNK = 256
+
+
+@njit(cache=True)
+def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
+    """Boxes (bucket.segment_box) of the segments sact[j0:j1]."""
+    for j in range(j0, j1):
+        segment_box(sact[j], x, seg, grow, lo, hi)
+
 
 @njit(cache=True)
 def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark, stamp,
@@ -40,19 +51,7 @@ def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
     mark (S,) int64 scratch with stamp (int) larger than any value in it.
     Returns m.
     """
-    for j in range(sact.shape[0]):
-        s = sact[j]
-        for k in range(3):
-            a = x[seg[s, 0], k]
-            b = a
-            for c in range(1, 4):
-                v = x[seg[s, c], k]
-                if v < a:
-                    a = v
-                if v > b:
-                    b = v
-            lo[s, k] = a - grow[s]
-            hi[s, k] = b + grow[s]
+    _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
     n = 0
     m = 0
     nptr[0] = 0
@@ -73,24 +72,6 @@ def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
                     m += 1
         nptr[i + 1] = n
     return m
-
-
-_CHUNK = 256
-
-
-@njit(cache=True)
-def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
-    for j in range(j0, j1):
-        s = sact[j]
-        for k in range(3):
-            a = x[seg[s, 0], k]
-            b = a
-            for c in range(1, 4):
-                v = x[seg[s, c], k]
-                a = min(a, v)
-                b = max(b, v)
-            lo[s, k] = a - grow[s]
-            hi[s, k] = b + grow[s]
 
 
 @njit(cache=True)

@@ -67,56 +67,6 @@ def test_exclusion_lists_and_empty_inputs():
     assert p0.shape == (101,) and c0.size == 0
 
 
-def test_runtime_with_resorting_matches_all_pairs_search():
-    """Moving meshes: bucket lists (with margin / re-sort) give the same forces as
-    checking every segment every cycle."""
-    from hollowbody.contact import ContactRuntime
-    from hollowbody.contact.examples import (
-        PartSpec,
-        assemble_model,
-        block_mesh,
-        part_contact,
-        plate_mesh,
-    )
-
-    class AllPairs(ContactRuntime):
-        def _sort(self, dt, cycle):
-            for p in self.passes:
-                ns, nseg = p.nodes.shape[0], p.seg.shape[0]
-                p.ptr = np.arange(ns + 1, dtype=np.int64) * nseg
-                p.cand = np.tile(np.arange(nseg, dtype=np.int32), ns)
-            self._margin = np.inf
-            self._last_sort = cycle
-
-    rng = np.random.default_rng(5)
-    xb, cb = block_mesh((3, 3, 2), (12.0, 12.0, 8.0), (-6.0, -6.0, 0.5))
-    xp, cp = plate_mesh((6, 6), (30.0, 30.0), (-15.0, -15.0, 0.0))
-    model = assemble_model([PartSpec(1, xb, cb), PartSpec(2, xp, cp, "shell", "elastic",
-                                                          {"E": 0.1, "PR": 0.3}, 1e-6, 2.0)],
-                           sort_interval=25)
-    n = model.n_nodes
-    mass = np.full(n, 1e-3)
-    cd = part_contact(1, "surface_to_surface", [1], [2], fs=0.2, fd=0.1)
-    a = ContactRuntime(cd, model, mass, np.zeros(n, bool))
-    a.parallel_min_nodes = 0  # threaded kernels here, serial ones in b
-    b = AllPairs(cd, model, mass, np.zeros(n, bool))
-    x = model.node_x0.copy()
-    v = rng.normal(0.0, 0.3, size=(n, 3))
-    v[: xb.shape[0], 2] -= 0.5
-    dt = 0.02
-    active = 0
-    for cycle in range(150):
-        fa = np.zeros((n, 3))
-        fb = np.zeros((n, 3))
-        a.add_forces(x, v, dt, cycle, fa)
-        b.add_forces(x, v, dt, cycle, fb)
-        np.testing.assert_allclose(fa, fb, rtol=1e-12, atol=1e-15)
-        active += a.n_active
-        x += dt * v
-        v += rng.normal(0.0, 0.05, size=(n, 3))
-    assert active > 0 and a.n_sorts > 150 // 25
-
-
 def test_one_pass_buffer_overflow_and_hint_agree():
     """The serial search writes into a buffer sized from size_hint; when that is
     too small it runs again into an exact one. Lists are the same either way."""

@@ -121,9 +121,10 @@ def test_slow_approach_between_near_list_filters():
     assert a.n_sorts <= 3 and a.n_filters >= 3 * a.n_sorts
 
 
+@pytest.mark.parametrize("kind", ["surface_to_surface", "single_surface"])
 @pytest.mark.parametrize("parallel", [False, True])
-def test_random_motion_single_surface_with_friction_and_erosion(parallel):
-    """Random motion of a block on a plate (single surface, friction), with
+def test_random_motion_with_friction_and_erosion(parallel, kind):
+    """Random motion of a block on a plate (two-way or single surface, friction), with
     segments deleted part-way: forces equal the all-pairs search in every cycle,
     with the serial and the threaded kernels (sort, near filter, pass).
     Deleting segments does not re-sort: the sorts happen in the same cycles as
