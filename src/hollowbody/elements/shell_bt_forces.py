@@ -53,7 +53,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange
 
 from hollowbody.elements.shell_bt_kinematics import (
     bt_bmatrix,
@@ -465,9 +465,11 @@ HG_SPRING_CAP = 1.0
 COLLAPSED_AREA = 0.01
 
 #: Elements per parallel chunk; groups smaller than PARALLEL_MIN run serially
-#: (thread start-up costs more than it saves on a few hundred shells).
+#: (thread start-up, ~10-20 us, costs more than it saves on a few hundred shells;
+#: 512 shells are ~0.13 ms of work). It was 2048, which left two of the hollow
+#: block's three wall parts (2,016 shells each) serial on two threads.
 CHUNK = 64
-PARALLEL_MIN = 2048
+PARALLEL_MIN = 512
 
 
 @njit(cache=True, parallel=True)
@@ -487,11 +489,11 @@ def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, z
                     mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die,
                     dhe, stress_out, pmax, nrm, area0, flip) -> None:
     """Every element of a group (arguments as :func:`bt_shell_range`): chunks over
-    threads for large groups, one serial call for small ones."""
+    threads for large groups, one serial call for small ones or with one thread."""
     args = (x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx,
             hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out,
             pmax, nrm, area0, flip)
-    if conn.shape[0] >= PARALLEL_MIN:
+    if conn.shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
         _bt_shell_parallel(*args)
     else:
         bt_shell_range(0, conn.shape[0], *args)

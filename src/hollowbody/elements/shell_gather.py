@@ -9,7 +9,7 @@ the same node. The node -> element-corner map is built once per group.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange
 
 from hollowbody.elements.shell_bt_forces import CHUNK, PARALLEL_MIN
 
@@ -60,7 +60,7 @@ def gather_node_forces(fe: np.ndarray, nodes: np.ndarray, ptr: np.ndarray, ref: 
     int64 CSR offsets into ref (m,) int64 entries ``4 * element + corner``.
     f (n,3) kN += forces; moment (n,3) kN*mm += moments when ``with_moment``.
     """
-    if nodes.shape[0] >= PARALLEL_MIN:
+    if nodes.shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
         _gather_parallel(fe, nodes, ptr, ref, f, moment, with_moment)
     else:
         _gather_range(0, nodes.shape[0], fe, nodes, ptr, ref, f, moment, with_moment)
