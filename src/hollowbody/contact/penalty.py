@@ -66,9 +66,10 @@ from hollowbody.contact.law import (
     release_depth,
 )
 
-#: Nodes (segments) per parallel work item: array arguments cost an
-#: incref/decref per call, so kernels are called per chunk, not per item.
-_CHUNK = 256
+#: Nodes per parallel work item: array arguments cost an incref/decref per call,
+#: so kernels are called per chunk, not per item; small enough that the nodes in
+#: contact (the costly ones, clustered in the numbering) spread over the threads.
+_CHUNK = 64
 #: mm: slack of the bound |d| >= |(p - cen) . n| - 1.05 warp (the segment lies
 #: within +-warp of its mean plane, and within +-1.0201 warp when its natural
 #: coordinates reach 1 + INSIDE_TOL; at a converged foot point |d| = |p - x_p|),

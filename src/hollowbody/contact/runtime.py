@@ -419,10 +419,13 @@ class ContactRuntime:
         self.n_sorts += 1
 
     def _threaded(self, p: _Pass) -> bool:
-        """Use the threaded kernels for pass p: it has parallel_min_nodes nodes or
-        more and numba has more than one thread (with one, the threaded near
-        filter would only count and fill in two sweeps)."""
-        return p.nodes.shape[0] >= self.parallel_min_nodes and get_num_threads() > 1
+        """Use the threaded kernels for pass p: its nodes plus its near pairs (the
+        work of a pass) reach parallel_min_nodes, and numba has more than one
+        thread (with one, the threaded near filter would only count and fill in
+        two sweeps). The pairs count: the hollow block's 993 impactor nodes have
+        ~26 near pairs each once the walls are crushed under the impactor."""
+        return (p.nodes.shape[0] + int(p.nptr[-1]) >= self.parallel_min_nodes
+                and get_num_threads() > 1)
 
     def _filter(self) -> None:
         """Near lists of every pass from its far lists, at the current coordinates."""
