@@ -79,10 +79,10 @@ _BOUND_EPS = 1.0e-6
 
 
 @njit(cache=True)
-def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k,
+def _nodes_range(i0, i1, act, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k,
                  s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
                  imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
-    """Contact of nodes i0 <= i < i1 of a pass (body of :func:`contact_pass`)."""
+    """Contact of the rows act[i0:i1] of a pass (body of :func:`contact_pass`)."""
     slsfac = params[0]
     soft = params[1]
     sofscl = params[2]
@@ -93,7 +93,8 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
     fric = params[7] > 0.0
     stiffen = params[8]
     deep = params[9]
-    for i in range(i0, i1):
+    for ii in range(i0, i1):
+        i = act[ii]
         nd = nodes[i]
         px = x[nd, 0]
         py = x[nd, 1]
@@ -322,11 +323,14 @@ def _nodes_range(i0, i1, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thic
 
 
 @njit(cache=True, parallel=True)
-def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
+def contact_pass(act, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
                  s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev, imm, ft,
                  nprev, oseg, ow, of, ogap, ofd, oentry, othru):
-    """Detect contact and compute the pair force of every node of one pass.
+    """Detect contact and compute the pair force of the nodes act of one pass.
 
+    act (m,) int32: the rows of ``nodes`` to treat (:func:`active_rows`: rows with a
+    candidate or in contact). Any other row has no candidate and no contact
+    state, and treating it would only write the zeros it already holds.
     x, v: (L, 3) float64 mm, mm/ms (local rows); dt, dtc: ms (step, SOFT=1
     reference step; dtc <= 0 disables the mass-based stiffness).
     nodes (ns,) int32 rows of x; n_thick (ns,) mm; n_k (ns,) kN/mm node
@@ -354,28 +358,30 @@ def contact_pass(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, 
     force on the node, othru (ns,) int32 segment the node was pushed
     through this cycle or -1.
     """
-    ns = nodes.shape[0]
+    ns = act.shape[0]
     nch = (ns + _CHUNK - 1) // _CHUNK
     for c in prange(nch):
-        _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, v, dt, dtc, nodes, n_thick, n_k,
+        _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), act, x, v, dt, dtc, nodes, n_thick,
+                     n_k,
                      n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp,
                      ptr, cand, params, mloc, wprev, imm, ft, nprev, oseg, ow, of, ogap, ofd,
                      oentry, othru)
 
 
 @njit(cache=True)
-def contact_pass_serial(x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
+def contact_pass_serial(act, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass,
                         s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc, wprev,
                         imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru):
     """Serial :func:`contact_pass` (small passes: no thread start-up)."""
-    _nodes_range(0, nodes.shape[0], x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick,
+    _nodes_range(0, act.shape[0], act, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick,
                  s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, params, mloc,
                  wprev, imm, ft, nprev, oseg, ow, of, ogap, ofd, oentry, othru)
 
 
 @njit(cache=True)
-def scatter_pass(nodes, seg, oseg, ow, of, f, fsum, wsum):
-    """Add the pair forces of one pass into f (L, 3) kN (serial, race-free).
+def scatter_pass(act, nodes, seg, oseg, ow, of, f, fsum, wsum):
+    """Add the pair forces of the rows act (:func:`active_rows`) of one pass into
+    f (L, 3) kN (serial, race-free).
 
     Node gets +F, the segment's corners -N_a F. fsum (3,) accumulates the
     sum of F (force on the pass's nodes); wsum (L,) the weight of every spring
@@ -384,7 +390,8 @@ def scatter_pass(nodes, seg, oseg, ow, of, f, fsum, wsum):
     Returns the number of nodes in contact.
     """
     n = 0
-    for i in range(nodes.shape[0]):
+    for ii in range(act.shape[0]):
+        i = act[ii]
         s = oseg[i]
         if s < 0:
             continue
@@ -452,10 +459,23 @@ def finish(nodes, fl, fprev, xl, xprev, f):
 
 
 @njit(cache=True)
-def count_through(othru):
-    """Number of rows of othru (ns,) int32 that name a segment (pass-through events)."""
+def count_through(act, othru):
+    """Number of rows act of othru (ns,) int32 that name a segment (pass-through events)."""
     n = 0
-    for i in range(othru.shape[0]):
-        if othru[i] >= 0:
+    for ii in range(act.shape[0]):
+        if othru[act[ii]] >= 0:
             n += 1
     return n
+
+
+@njit(cache=True)
+def active_rows(nptr, oseg, out):
+    """Rows i of a pass with a near candidate (nptr[i + 1] > nptr[i]) or in contact
+    (oseg[i] >= 0), ascending, into out (ns,) int32; returns their number. Until
+    the next near filter no other row can come into contact."""
+    m = 0
+    for i in range(oseg.shape[0]):
+        if nptr[i + 1] > nptr[i] or oseg[i] >= 0:
+            out[m] = i
+            m += 1
+    return m

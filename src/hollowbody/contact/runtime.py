@@ -51,6 +51,7 @@ from hollowbody.contact.frames import segment_frames, segment_frames_of
 from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
+    active_rows,
     contact_pass,
     contact_pass_serial,
     count_through,
@@ -125,6 +126,9 @@ class _Pass:
         self.nptr = np.zeros(ns + 1, np.int64)
         self.ncand = np.zeros(0, np.int32)
         self.fact = np.zeros(0, np.int32)
+        #: (m,) int32 rows the kernels treat until the next filter (active_rows)
+        self.act = np.zeros(0, np.int32)
+        self._act_buf = np.zeros(ns, np.int32)
         self._nsact = np.zeros(nseg, np.int32)
         self._mark = np.zeros(nseg, np.int64)
         self._lo = np.zeros((nseg, 3))
@@ -343,7 +347,7 @@ class ContactRuntime:
         self._pending.append(ev)
 
     def _record_through(self, p: _Pass) -> None:
-        for i in np.nonzero(p.othru >= 0)[0]:
+        for i in p.act[p.othru[p.act] >= 0]:
             nid = int(self._node_ids[self.nodes[p.nodes[i]]])
             self.n_pass_through += 1
             self.pass_through_nodes.add(nid)
@@ -438,6 +442,8 @@ class ContactRuntime:
                 self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.sact,
                 p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
             p.fact = p._nsact[:m]
+            p.act = p._act_buf[:active_rows(p.nptr, p.oseg, p._act_buf)]
+            p.othru[:] = -1  # rows left out are not rewritten (events already reported)
         self._xnear[:] = self._xl
         self._refilter = False
 
@@ -493,14 +499,15 @@ class ContactRuntime:
             par = self._threaded(p)
             segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp)
             (contact_pass if par else contact_pass_serial)(
-                self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass, p.seg,
-                p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
+                p.act, self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass,
+                p.seg, p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
                 p.nptr, p.ncand, self._params, self._mloc, self._wprev, self._imm, p.ft,
                 p.nprev, p.oseg, p.ow, p.of, p.ogap, p.ofd, p.oentry, p.othru)
-            if count_through(p.othru):
+            if count_through(p.act, p.othru):
                 self._record_through(p)
             p.fsum[:] = 0.0
-            n_act += scatter_pass(p.nodes, p.seg, p.oseg, p.ow, p.of, self._fl, p.fsum, self._wnew)
+            n_act += scatter_pass(p.act, p.nodes, p.seg, p.oseg, p.ow, p.of, self._fl, p.fsum,
+                                  self._wnew)
             self.slave_force += p.sign * p.fsum
         self.master_force[:] = -self.slave_force
         self._wprev[:] = self._wnew

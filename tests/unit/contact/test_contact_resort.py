@@ -29,7 +29,8 @@ from hollowbody.model.model import SurfaceRef as Ref
 
 class AllPairs(ContactRuntime):
     """Reference: every segment is a candidate of every node (but the node's own
-    segments and its exclusion list, as in the bucket sort); never re-sorted."""
+    segments and its exclusion list, as in the bucket sort), never re-sorted, and
+    the kernels treat every node (not only those with candidates or in contact)."""
 
     def _sort(self, dt, cycle):
         for p in self.passes:
@@ -46,6 +47,11 @@ class AllPairs(ContactRuntime):
         self._margin = np.inf
         self._last_sort = cycle
         self.n_sorts += 1
+
+    def _filter(self):
+        super()._filter()
+        for p in self.passes:  # and every row treated, listed or not
+            p.act = np.arange(p.nodes.shape[0], dtype=np.int32)
 
 
 def _block_over_plate(gap: float, sort_interval: int, thickness: float = 2.0):
