@@ -226,6 +226,10 @@ class RunOutputs:
             "contact_pass_through": {
                 str(c.cid): {"events": c.n_pass_through, "nodes": len(c.pass_through_nodes)}
                 for c in self.asm.contacts if hasattr(c, "n_pass_through")},
+            # how often each contact rebuilt its candidate lists (search cost)
+            "contact_search": {
+                str(c.cid): {"sorts": c.n_sorts, "near_filters": c.n_filters}
+                for c in self.asm.contacts if hasattr(c, "n_filters")},
         }
         (self.out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json))
         level = logging.INFO if status == "normal termination" else logging.ERROR

@@ -34,6 +34,8 @@ def test_rigid_plate_is_stopped_by_a_fixed_base(tmp_path):
     res, rb, s = _run(tmp_path)
     assert res.status == "normal termination"
     assert s["contact_pass_through"]["1"]["events"] == 0
+    search = s["contact_search"]["1"]  # the plate moves: lists rebuilt, filters more often
+    assert search["sorts"] >= 1 and search["near_filters"] > search["sorts"]
     uz = rb["uz [mm]"]
     # stopped within the contact zone: reach 2.75 mm + release depth 2.75 mm
     assert uz.min() > -(0.1 + 5.5)
