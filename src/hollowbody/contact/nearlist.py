@@ -37,6 +37,44 @@ def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
 
 
 @njit(cache=True)
+def _near_rows(i0, i1, x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, fill):
+    """Near pairs of rows i0 <= i < i1 (a listed pair whose box holds the node).
+
+    fill 0: count into nptr[i + 1]; 1: write into ncand from nptr[i] (nptr
+    already cumulative); 2 (serial, one sweep): nptr[i + 1] = nptr[i] + count
+    and write. Writing stamps mark[s] = stamp for every segment written (threads
+    may write the same stamp to the same entry: same value, no harm).
+    """
+    for i in range(i0, i1):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        n = nptr[i] if fill != 0 else 0
+        for q in range(ptr[i], ptr[i + 1]):
+            s = cand[q]
+            if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
+                    and lo[s, 2] <= pz <= hi[s, 2]):
+                if fill != 0:
+                    ncand[n] = s
+                    mark[s] = stamp
+                n += 1
+        if fill != 1:
+            nptr[i + 1] = n
+
+
+@njit(cache=True)
+def _marked(mark, stamp, nsact):
+    """The segments s with mark[s] == stamp, ascending, into nsact; their number."""
+    m = 0
+    for s in range(mark.shape[0]):
+        if mark[s] == stamp:
+            nsact[m] = s
+            m += 1
+    return m
+
+
+@njit(cache=True)
 def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark, stamp,
                 nsact):
     """Near lists from the far lists at the current coordinates.
@@ -47,58 +85,20 @@ def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
     are recomputed into lo / hi (S, 3) mm, other rows untouched).
     Outputs: nptr (ns + 1,) int64 and ncand (>= ptr[-1],) int32 the near
     lists (a subset of each far list, same order); nsact (S,) int32 its first
-    m entries the segments in the near lists, ascending in first use.
+    m entries the segments in the near lists, ascending.
     mark (S,) int64 scratch with stamp (int) larger than any value in it.
     Returns m.
     """
     _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
-    n = 0
-    m = 0
     nptr[0] = 0
-    for i in range(nodes.shape[0]):
-        nd = nodes[i]
-        px = x[nd, 0]
-        py = x[nd, 1]
-        pz = x[nd, 2]
-        for q in range(ptr[i], ptr[i + 1]):
-            s = cand[q]
-            if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
-                    and lo[s, 2] <= pz <= hi[s, 2]):
-                ncand[n] = s
-                n += 1
-                if mark[s] != stamp:
-                    mark[s] = stamp
-                    nsact[m] = s
-                    m += 1
-        nptr[i + 1] = n
-    return m
-
-
-@njit(cache=True)
-def _near_rows(i0, i1, x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, fill):
-    """Count (fill False: into nptr[i + 1]) or write (from nptr[i]) near pairs of rows i0..i1."""
-    for i in range(i0, i1):
-        nd = nodes[i]
-        px = x[nd, 0]
-        py = x[nd, 1]
-        pz = x[nd, 2]
-        n = nptr[i] if fill else 0
-        for q in range(ptr[i], ptr[i + 1]):
-            s = cand[q]
-            if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
-                    and lo[s, 2] <= pz <= hi[s, 2]):
-                if fill:
-                    ncand[n] = s
-                    mark[s] = stamp  # every writer writes the same value
-                n += 1
-        if not fill:
-            nptr[i + 1] = n
+    _near_rows(0, nodes.shape[0], x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, 2)
+    return _marked(mark, stamp, nsact)
 
 
 @njit(cache=True, parallel=True)
 def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
                          stamp, nsact):
-    """Threaded :func:`near_filter` (same lists; nsact in ascending order)."""
+    """Threaded :func:`near_filter` (same lists): count, offsets, write."""
     ns = nodes.shape[0]
     nk = sact.shape[0]
     for c in prange((nk + _CHUNK - 1) // _CHUNK):
@@ -106,16 +106,11 @@ def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, nca
     nch = (ns + _CHUNK - 1) // _CHUNK
     for c in prange(nch):
         _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
-                   ncand, mark, stamp, False)
+                   ncand, mark, stamp, 0)
     nptr[0] = 0
     for i in range(ns):
         nptr[i + 1] += nptr[i]
     for c in prange(nch):
         _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
-                   ncand, mark, stamp, True)
-    m = 0
-    for s in range(mark.shape[0]):
-        if mark[s] == stamp:
-            nsact[m] = s
-            m += 1
-    return m
+                   ncand, mark, stamp, 1)
+    return _marked(mark, stamp, nsact)

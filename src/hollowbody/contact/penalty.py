@@ -362,10 +362,9 @@ def contact_pass(act, x, v, dt, dtc, nodes, n_thick, n_k, n_mass, seg, s_thick, 
     nch = (ns + _CHUNK - 1) // _CHUNK
     for c in prange(nch):
         _nodes_range(c * _CHUNK, min(ns, (c + 1) * _CHUNK), act, x, v, dt, dtc, nodes, n_thick,
-                     n_k,
-                     n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2, warp,
-                     ptr, cand, params, mloc, wprev, imm, ft, nprev, oseg, ow, of, ogap, ofd,
-                     oentry, othru)
+                     n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth, s_two, cen, nrm, rad2,
+                     warp, ptr, cand, params, mloc, wprev, imm, ft, nprev, oseg, ow, of, ogap,
+                     ofd, oentry, othru)
 
 
 @njit(cache=True)

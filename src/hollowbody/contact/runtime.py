@@ -414,8 +414,8 @@ class ContactRuntime:
         self._near_margin = NEAR_MARGIN * lseg
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
-                                        p.ex_ptr, p.ex_seg,
-                                        self._threaded(p))
+                                        p.ex_ptr, p.ex_seg, self._threaded(p),
+                                        size_hint=p.cand.shape[0])
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
         self._xsort[:] = self._xl

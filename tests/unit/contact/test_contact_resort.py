@@ -86,22 +86,30 @@ def _step_both(a, b, x, v, dt, cycle):
     return fa
 
 
+def _approach(model, nb: int, vz: float, cycles: int):
+    """The block's nodes (the first nb) move at vz mm/ms, dt = 0.01 ms, for
+    ``cycles``, checked against all pairs every cycle; returns the runtime and
+    the first cycle with a node in contact (None: none)."""
+    a, b = _pair(model)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:nb, 2] = vz
+    first = None
+    for cycle in range(cycles):
+        _step_both(a, b, x, v, 0.01, cycle)
+        if a.n_active and first is None:
+            first = cycle
+        x += 0.01 * v
+    return a, first
+
+
 def test_fast_block_is_caught_before_the_sort_interval():
     """A block 30 mm above a plate closes at 1 mm per cycle: it touches after ~28
     cycles, long before the 100-cycle sort interval. The displacement bounds
     rebuild the lists in time (far lists several times, near lists more often),
     and every cycle's forces equal the all-pairs search."""
     model, nb = _block_over_plate(30.0, sort_interval=100)
-    a, b = _pair(model)
-    x = model.node_x0.copy()
-    v = np.zeros_like(x)
-    v[:nb, 2] = -100.0  # mm/ms, 1 mm per cycle at dt = 0.01 ms
-    first = None
-    for cycle in range(36):
-        _step_both(a, b, x, v, 0.01, cycle)
-        if a.n_active and first is None:
-            first = cycle
-        x += 0.01 * v
+    a, first = _approach(model, nb, -100.0, 36)  # mm/ms: 1 mm per cycle at dt = 0.01 ms
     assert first is not None and 25 <= first <= 32
     assert a.n_sorts >= 3 and a.n_filters > a.n_sorts
 
@@ -113,16 +121,7 @@ def test_slow_approach_between_near_list_filters():
     between two filters, from pairs only the near margin kept listed; forces
     equal the all-pairs search in every cycle."""
     model, nb = _block_over_plate(5.5, sort_interval=100, thickness=6.0)
-    a, b = _pair(model)
-    x = model.node_x0.copy()
-    v = np.zeros_like(x)
-    v[:nb, 2] = -5.0
-    first = None
-    for cycle in range(60):
-        _step_both(a, b, x, v, 0.01, cycle)
-        if a.n_active and first is None:
-            first = cycle
-        x += 0.01 * v
+    a, first = _approach(model, nb, -5.0, 60)
     assert first is not None
     assert a.n_sorts <= 3 and a.n_filters >= 3 * a.n_sorts
 
