@@ -26,6 +26,7 @@ from hollowbody.io.keyword import (
     ControlTermination,
     ControlTimestep,
     DatabaseAscii,
+    DatabaseBinaryD3dump,
     DatabaseBinaryD3plot,
     DatabaseHistoryNode,
     DatabaseHistoryNodeSet,
@@ -574,6 +575,8 @@ def _outputs(b: _Builder, model: m.Model) -> m.OutputRequests:
             out.intervals[d.name.lower()] = d.dt
     for d in b.of(DatabaseBinaryD3plot):
         out.d3plot_dt = d.dt
+    for d in b.of(DatabaseBinaryD3dump):
+        out.d3dump_cycles = max(int(round(d.cycl)), 0)
     nodes = []
     for h in b.of(DatabaseHistoryNode):
         nodes.append(b.node_list(h.ids, h, "history", h.id_lines))

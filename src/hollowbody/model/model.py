@@ -316,6 +316,7 @@ class OutputRequests:
 
     intervals: dict[str, float] = field(default_factory=dict)  # glstat, rcforc, ...
     d3plot_dt: float = 0.0
+    d3dump_cycles: int = 0  # *DATABASE_BINARY_D3DUMP CYCL: cycles between restart dumps
     history_nodes: np.ndarray = field(
         default_factory=lambda: np.zeros(0, dtype=np.int64))  # (k,) node indices
 

@@ -3,7 +3,7 @@
 *CONTROL_TERMINATION, *CONTROL_TIMESTEP, *CONTROL_SHELL, *CONTROL_HOURGLASS,
 *CONTROL_CONTACT, *CONTROL_BULK_VISCOSITY, *DATABASE_<ascii> (GLSTAT,
 RCFORC, NODOUT, SPCFORC, MATSUM and other one-card ASCII databases),
-*DATABASE_BINARY_D3PLOT, *DATABASE_HISTORY_NODE(_SET). Times in ms. Cards
+*DATABASE_BINARY_D3PLOT, *DATABASE_BINARY_D3DUMP, *DATABASE_HISTORY_NODE(_SET). Times in ms. Cards
 not read here are kept in ``extra_cards``.
 """
 
@@ -189,6 +189,23 @@ class DatabaseBinaryD3plot(SimpleKeyword):
 
     KEYWORD: ClassVar[str] = "DATABASE_BINARY_D3PLOT"
     CARDS: ClassVar[tuple[str, ...]] = ("dt lcdt beam npltc psetid",)
+    N_REQUIRED: ClassVar[int] = 0
+
+
+@register
+@dataclass(kw_only=True)
+class DatabaseBinaryD3dump(SimpleKeyword):
+    """*DATABASE_BINARY_D3DUMP: CYCL (cycles between restart dumps; 0 = none) LCDT BEAM
+    NPLTC PSETID (only CYCL is used)."""
+
+    cycl: float = 0.0
+    lcdt: int = 0
+    beam: int = 0
+    npltc: int = 0
+    psetid: int = 0
+
+    KEYWORD: ClassVar[str] = "DATABASE_BINARY_D3DUMP"
+    CARDS: ClassVar[tuple[str, ...]] = ("cycl lcdt beam npltc psetid",)
     N_REQUIRED: ClassVar[int] = 0
 
 
