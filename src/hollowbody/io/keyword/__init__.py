@@ -63,7 +63,8 @@ from hollowbody.io.keyword.writer import deck_lines, write_deck
 __all__ = [
     "CONTACT_TYPES", "BoundarySpcNode", "BoundarySpcSet", "Contact", "ControlBulkViscosity",
     "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
-    "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode", "DatabaseHistoryNodeSet",
+    "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
+    "DatabaseHistoryNodeSet",
     "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
     "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
     "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
