@@ -2,7 +2,8 @@
 
 Exit codes: 0 normal termination, 2 bad input (nothing run), 3 error
 termination (negative volume, DTMIN, non-finite numbers; outputs kept),
-130 user interrupt (outputs kept).
+130 user interrupt (outputs kept). With ``--restart`` the run resumes from
+the newest restart file (``d3dumpNN``) of the output folder, or the one given.
 """
 
 from __future__ import annotations
@@ -26,6 +27,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
     p.add_argument("--strict", action="store_true", help="unknown keywords are errors")
     p.add_argument("--quiet", action="store_true", help="no progress display")
+    p.add_argument("--restart", nargs="?", const="newest", default=None, metavar="FILE",
+                   help="resume from a restart file (default: the newest d3dumpNN of --out)")
+    p.add_argument("--dump-cycles", type=int, default=None, metavar="N",
+                   help="write a restart file every N cycles (overrides "
+                        "*DATABASE_BINARY_D3DUMP; 0 = none)")
     p.set_defaults(func=main)
 
 
@@ -43,7 +49,8 @@ def main(args: argparse.Namespace) -> int:
 
     out = args.out or args.deck.with_name(args.deck.stem + "_out")
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
-                      vtk=not args.no_vtk, quiet=args.quiet, strict=args.strict)
+                      vtk=not args.no_vtk, quiet=args.quiet, strict=args.strict,
+                      restart=args.restart, dump_cycles=args.dump_cycles)
     print(f"{result.status}: {result.reason}")
     print(f"  {result.cycles} cycles, end time {result.end_time_ms:.6g} ms, wall "
           f"{result.summary.get('wall_seconds', 0.0):.2f} s, energy ratio "

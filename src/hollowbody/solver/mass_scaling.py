@@ -31,6 +31,9 @@ import numpy as np
 class _GroupState:
     """Per-group bookkeeping: mass factor and assigned rotational inertia."""
 
+    #: time-varying attributes (saved by the run's State)
+    STATE_FIELDS = ("mfac", "inertia")
+
     def __init__(self, rt) -> None:  # noqa: ANN001 - element-group runtime
         self.rt = rt
         e = int(rt.n_elem) if hasattr(rt, "n_elem") else int(rt.mass.shape[0])

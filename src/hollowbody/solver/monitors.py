@@ -24,6 +24,9 @@ DT_DROP_FACTOR = 0.01
 class Monitors:
     """State of the three monitors; ``warnings`` collects every message issued."""
 
+    #: time-varying attributes (saved by the run's State)
+    STATE_FIELDS = ("dt_initial", "warnings", "_fired", "_last_part_energy")
+
     dt_initial: float
     warnings: list[dict] = field(default_factory=list)
     _fired: set[str] = field(default_factory=set)

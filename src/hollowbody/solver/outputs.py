@@ -26,6 +26,7 @@ import numpy as np
 
 from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
+from hollowbody.solver.energies import energies, node_velocity_full_step
 
 DEFAULT_HISTORY_COUNT = 500
 DEFAULT_STATE_COUNT = 20
@@ -45,15 +46,25 @@ class _Clock:
         return True
 
 
-class RunOutputs:
-    """Writers of one run (see the module docstring)."""
+HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")
 
-    def __init__(self, out: Path, model, asm, end_time: float, vtk: bool = True) -> None:
+
+class RunOutputs:
+    """Writers of one run (see the module docstring).
+
+    Observers of the run: :meth:`record` receives the State after each cycle.
+    resume: :meth:`position` saved in a restart file; the files are then cut
+    at that point and written on (a resumed run) instead of started anew.
+    """
+
+    def __init__(self, out: Path, model, asm, end_time: float, vtk: bool = True,
+                 resume: dict | None = None) -> None:
         self.out = Path(out)
         self.model = model
         self.asm = asm
         self.end_time = end_time
-        self.logger = _make_logger(self.out / "messages.log")
+        self.logger = _make_logger(self.out / "messages.log", append=resume is not None)
+        pos = (resume or {}).get("files", {})
         req = model.output.intervals
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
@@ -64,47 +75,68 @@ class RunOutputs:
         self.glstat = HistoryWriter(self.out / "glstat.csv", [
             "time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]", "hourglass [J]",
             "contact [J]", "external_work [J]", "total [J]", "energy_ratio",
-            "added_mass [kg]"])
+            "added_mass [kg]"], pos.get("glstat"))
         self.rcforc = HistoryWriter(self.out / "rcforc.csv", [
             "time [ms]", "contact", "slave_fx [kN]", "slave_fy [kN]", "slave_fz [kN]",
-            "master_fx [kN]", "master_fy [kN]", "master_fz [kN]"])
+            "master_fx [kN]", "master_fy [kN]", "master_fz [kN]"], pos.get("rcforc"))
         self.nodout = HistoryWriter(self.out / "nodout.csv", [
             "time [ms]", "node", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
-            "vz [mm/ms]"])
+            "vz [mm/ms]"], pos.get("nodout"))
         self.rbdout = HistoryWriter(self.out / "rbdout.csv", [
             "time [ms]", "part", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
-            "vz [mm/ms]", "fx [kN]", "fy [kN]", "fz [kN]"])
+            "vz [mm/ms]", "fx [kN]", "fy [kN]", "fz [kN]"], pos.get("rbdout"))
         self.spcforc = HistoryWriter(self.out / "spcforc.csv", [
-            "time [ms]", "fx [kN]", "fy [kN]", "fz [kN]"])
+            "time [ms]", "fx [kN]", "fy [kN]", "fz [kN]"], pos.get("spcforc"))
         self.matsum = HistoryWriter(self.out / "matsum.csv", [
-            "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"])
+            "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"],
+            pos.get("matsum"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
+        if resume is not None:
+            for name, nxt in resume["clocks"].items():
+                self.clocks[name].next = nxt
+            self.state_clock.next = resume["state_clock"]
+            if self.vtk is not None:
+                self.vtk.entries = [tuple(e) for e in resume["vtk_entries"]]
+            self.last_energies = dict(resume["last_energies"])
+            forced = resume["last_forced"]
+            self._last_forced = tuple(forced) if forced is not None else None
+
+    def position(self) -> dict:
+        """Where every output stands (file offsets, clocks, states written): saved in
+        restart files so a resumed run continues the same files."""
+        return {"files": {name: getattr(self, name).position() for name in HISTORIES},
+                "clocks": {name: c.next for name, c in self.clocks.items()},
+                "state_clock": self.state_clock.next,
+                "vtk_entries": list(self.vtk.entries) if self.vtk is not None else [],
+                "last_energies": dict(self.last_energies),
+                "last_forced": self._last_forced}
 
     # -- logging ---------------------------------------------------------------
     def log(self, message: str, level: int = logging.INFO) -> None:
         self.logger.log(level, message)
 
     # -- per cycle ----------------------------------------------------------------
-    def record(self, loop, force: bool = False) -> None:
-        if force and self._last_forced == (loop.cycle, loop.t):
+    def record(self, state, force: bool = False) -> None:  # noqa: ANN001 - State
+        """Write what is due at the State's time (everything when ``force``)."""
+        if force and self._last_forced == (state.cycle, state.t):
             return  # already written at this very state (end of run after a forced row)
         if force:
-            self._last_forced = (loop.cycle, loop.t)
-        self._contact_events(loop)
-        t = loop.t
+            self._last_forced = (state.cycle, state.t)
+        self._contact_events(state)
+        t = state.t
         if self.clocks["glstat"].due(t) or force:
-            e = loop.energies()
+            e = energies(self.asm, state)
             self.last_energies = e
-            self.glstat.write([t, loop.cycle, loop.dt_next, e["kinetic"], e["internal"],
+            self.glstat.write([t, state.cycle, state.dt_next, e["kinetic"], e["internal"],
                                e["hourglass"], e["contact"], e["external_work"], e["total"],
                                e["energy_ratio"], e["added_mass"]])
-            if loop.monitors is not None and loop.cycle > 0:
-                part_e, part_hg = self._part_energies(loop)
-                elem, pid = loop.dt_crit_elem
-                for w in loop.monitors.check(t, e["energy_ratio"], e["internal"],
-                                             e["hourglass"], part_e, part_hg, loop.dt_next,
-                                             elem, pid):
+            if state.monitors is not None and state.cycle > 0:
+                part_e, part_hg = self._part_energies(state)
+                elem, pid = state.dt_crit_elem
+                for w in state.monitors.check(t, e["energy_ratio"], e["internal"],
+                                              e["hourglass"], part_e, part_hg, state.dt_next,
+                                              elem, pid):
                     self.log(w["message"], logging.WARNING)
         if self.clocks["rcforc"].due(t) or force:
             for c in self.asm.contacts:
@@ -112,29 +144,29 @@ class RunOutputs:
         if self.clocks["nodout"].due(t) or force:
             hist = self.model.output.history_nodes
             if hist.size:
-                u = loop.x[hist] - self.model.node_x0[hist]
+                u = state.x[hist] - self.model.node_x0[hist]
                 for k, i in enumerate(hist):
-                    self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *loop.v[i]])
+                    self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *state.v[i]])
         if self.clocks["rbdout"].due(t) or force:
             for b in self.asm.bodies:
                 self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
         if self.clocks["spcforc"].due(t) or force:
-            self.spcforc.write([t, *loop.constraints.reactions(loop.f)])
+            self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
         if self.clocks["matsum"].due(t) or force:
-            self._write_matsum(loop)
+            self._write_matsum(state)
         if self.vtk is not None and (self.state_clock.due(t) or force):
-            self.write_state(loop)
+            self.write_state(state)
 
-    def _contact_events(self, loop) -> None:
+    def _contact_events(self, state) -> None:  # noqa: ANN001
         """Log the contacts' new warnings (nodes pushed through a surface)."""
         for c in self.asm.contacts:
             for w in (c.pop_events() if hasattr(c, "pop_events") else ()):
                 self.log(w["message"], logging.WARNING)
-                if loop.monitors is not None:
-                    loop.monitors.warnings.append(w)
+                if state.monitors is not None:
+                    state.monitors.warnings.append(w)
 
-    def _part_energies(self, loop) -> tuple[dict[int, float], dict[int, tuple[float, int]]]:
-        energy = self._part_kinetic(loop)
+    def _part_energies(self, state) -> tuple[dict[int, float], dict[int, tuple[float, int]]]:
+        energy = self._part_kinetic(state)
         hg: dict[int, tuple[float, int]] = {}
         for rt in self.asm.elements:
             energy[rt.pid] = energy.get(rt.pid, 0.0) + rt.internal_energy + rt.hourglass_energy
@@ -145,26 +177,26 @@ class RunOutputs:
             hg[rt.pid] = (rt.hourglass_energy, eid)
         return energy, hg
 
-    def _part_kinetic(self, loop) -> dict[int, float]:
+    def _part_kinetic(self, state) -> dict[int, float]:  # noqa: ANN001
         """Kinetic energy (J) per part: rigid bodies exactly, other parts from their
         share of the lumped nodal masses at full-step velocities."""
-        v = loop.node_velocity_full_step()
+        v = node_velocity_full_step(self.asm, state)
         bodies = {b.pid: b for b in self.asm.bodies}
         return {pid: bodies[pid].kinetic_energy() if pid in bodies else
                 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
                 for pid, share in self.asm.part_share.items()}
 
-    def _write_matsum(self, loop) -> None:
+    def _write_matsum(self, state) -> None:  # noqa: ANN001
         by_pid = {rt.pid: rt for rt in self.asm.elements}
-        kinetic = self._part_kinetic(loop)
+        kinetic = self._part_kinetic(state)
         for pid in sorted(self.asm.part_share):
             ke = kinetic[pid]
             rt = by_pid.get(pid)
             ie = rt.internal_energy if rt is not None else 0.0
             hg = rt.hourglass_energy if rt is not None else 0.0
-            self.matsum.write([loop.t, pid, ke, ie, hg])
+            self.matsum.write([state.t, pid, ke, ie, hg])
 
-    def write_state(self, loop) -> None:
+    def write_state(self, state) -> None:  # noqa: ANN001
         cells, data = [], {"part": [], "element": [], "alive": [], "stress [GPa]": [],
                            "von_mises [GPa]": [], "plastic_strain": []}
         runtimes = {rt.pid: rt for rt in self.asm.elements}
@@ -174,8 +206,8 @@ class RunOutputs:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
         if not cells:
             return
-        u = loop.x - self.model.node_x0
-        self.vtk.write(loop.t, loop.x, {"displacement [mm]": u, "velocity [mm/ms]": loop.v},
+        u = state.x - self.model.node_x0
+        self.vtk.write(state.t, state.x, {"displacement [mm]": u, "velocity [mm/ms]": state.v},
                        cells, data)
 
     @staticmethod
@@ -198,31 +230,34 @@ class RunOutputs:
         data["plastic_strain"].append(np.asarray(eps, dtype=np.float64))
 
     # -- end -------------------------------------------------------------------
-    def finish(self, loop, status: str, reason: str, where: dict, wall: float) -> dict:
+    def finish(self, state, status: str, reason: str, where: dict, wall: float,  # noqa: ANN001
+               extra: dict | None = None) -> dict:
+        """Write the last state and summary.json; close every file. ``extra``: more
+        summary entries (restart files written, where the run resumed from)."""
         try:
-            if loop.cycle > 0 or loop.monitors is not None:
-                self.record(loop, force=True)
+            if state.cycle > 0 or state.monitors is not None:
+                self.record(state, force=True)
         except Exception as exc:  # never lose the summary because a last write failed
             self.log(f"could not write the final state: {exc}", logging.ERROR)
-        energies = self.last_energies
+        last = self.last_energies
         summary = {
             "status": status,
             "reason": reason,
             **{f"error_{k}": v for k, v in where.items()},
-            "end_time_ms": loop.t,
+            "end_time_ms": state.t,
             "requested_end_time_ms": self.end_time,
-            "cycles": loop.cycle,
-            "dt_initial_ms": getattr(loop, "dt0", None),
-            "dt_min_ms": None if not np.isfinite(loop.dt_min) else loop.dt_min,
+            "cycles": state.cycle,
+            "dt_initial_ms": state.dt0 if state.dt0 > 0.0 else None,
+            "dt_min_ms": None if not np.isfinite(state.dt_min) else state.dt_min,
             "element_counts": self.asm.element_counts(),
             "nodes": int(self.model.n_nodes),
-            "eroded_elements": loop.n_eroded,
+            "eroded_elements": state.n_eroded,
             "wall_seconds": wall,
-            "timing_seconds": dict(loop.timing),
-            "energy_ratio": energies.get("energy_ratio"),
-            "energies_J": energies,
-            "warnings": loop.monitors.warnings if loop.monitors is not None else [],
-            "mass_scaling": loop.mass_scaling.summary(),
+            "timing_seconds": dict(state.timing),
+            "energy_ratio": last.get("energy_ratio"),
+            "energies_J": last,
+            "warnings": state.monitors.warnings if state.monitors is not None else [],
+            "mass_scaling": state.mass_scaling.summary(),
             "contact_pass_through": {
                 str(c.cid): {"events": c.n_pass_through, "nodes": len(c.pass_through_nodes)}
                 for c in self.asm.contacts if hasattr(c, "n_pass_through")},
@@ -230,13 +265,13 @@ class RunOutputs:
             "contact_search": {
                 str(c.cid): {"sorts": c.n_sorts, "near_filters": c.n_filters}
                 for c in self.asm.contacts if hasattr(c, "n_filters")},
+            **(extra or {}),
         }
         (self.out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json))
         level = logging.INFO if status == "normal termination" else logging.ERROR
-        self.log(f"{status}: {reason}; {loop.cycle} cycles, wall {wall:.2f} s", level)
-        for w in (self.glstat, self.rcforc, self.nodout, self.rbdout, self.spcforc,
-                  self.matsum):
-            w.close()
+        self.log(f"{status}: {reason}; {state.cycle} cycles, wall {wall:.2f} s", level)
+        for name in HISTORIES:
+            getattr(self, name).close()
         for h in list(self.logger.handlers):
             h.close()
             self.logger.removeHandler(h)
@@ -251,13 +286,13 @@ def _json(o: object) -> object:
     return str(o)
 
 
-def _make_logger(path: Path) -> logging.Logger:
+def _make_logger(path: Path, append: bool = False) -> logging.Logger:
     logger = logging.getLogger(f"hollowbody.run.{path.resolve()}")
     logger.setLevel(logging.INFO)
     logger.propagate = False
     for h in list(logger.handlers):
         logger.removeHandler(h)
-    fh = logging.FileHandler(path, mode="w")
+    fh = logging.FileHandler(path, mode="a" if append else "w")
     fh.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(message)s"))
     logger.addHandler(fh)
     sh = logging.StreamHandler(sys.stderr)

@@ -44,6 +44,9 @@ def _rotation(phi: np.ndarray) -> np.ndarray:
 class RigidBody:
     """State of one rigid body (see module docstring for the symbols)."""
 
+    #: time-varying attributes (saved by the run's State)
+    STATE_FIELDS = ("xc", "rot", "vel", "omega", "force", "moment", "vel_free", "omega_free")
+
     pid: int
     nodes: np.ndarray  # (k,) int64 node indices
     mass: float

@@ -15,6 +15,7 @@ import numpy as np
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
+from hollowbody.solver.boundary import Constraints
 from hollowbody.solver.rigid import RigidBody, build_rigid_bodies
 
 
@@ -48,6 +49,10 @@ class Assembly:
     counts: dict[str, int] = field(default_factory=dict)
     #: tied contacts (:class:`hollowbody.solver.tied.TieSet`), None when there are none
     ties: object | None = None
+    #: SPCs and prescribed motions (:class:`hollowbody.solver.boundary.Constraints`)
+    constraints: Constraints | None = None
+    #: delete failed elements instead of ending the run (ERODE, or the run's option)
+    erode: bool = False
 
     def element_counts(self) -> dict[str, int]:
         return dict(self.counts)
@@ -163,6 +168,8 @@ def assemble(model: Model) -> Assembly:
     asm.bodies = build_rigid_bodies(model, node_mass)
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
+    asm.constraints = Constraints(model, asm.bodies)
+    asm.erode = bool(model.controls.erode)
     rigid_node = ~asm.deformable
     fixed_node = np.zeros((n, 3), dtype=bool)
     for spc in model.spcs:

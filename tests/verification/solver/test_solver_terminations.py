@@ -134,15 +134,15 @@ def test_user_interrupt_keeps_outputs(tmp_path, monkeypatch):
     from hollowbody.solver import explicit
 
     calls = {"n": 0}
-    original = explicit._Loop._advance
+    original = explicit.step
 
-    def interrupted(self, dt, dt_avg):
+    def interrupted(model, plan, state, dt):
         calls["n"] += 1
         if calls["n"] == 20:
             raise KeyboardInterrupt
-        return original(self, dt, dt_avg)
+        return original(model, plan, state, dt)
 
-    monkeypatch.setattr(explicit._Loop, "_advance", interrupted)
+    monkeypatch.setattr(explicit, "step", interrupted)
     res = _run(cube_and_plate(end=2.0), tmp_path)
     assert res.status == "user interrupt"
     s = json.loads((tmp_path / "summary.json").read_text())

@@ -46,7 +46,7 @@ def capture(monkeypatch):
     def spy(self, loop, force=False):
         record(self, loop, force)
         snaps.append({"t": loop.t, "x": loop.x.copy(), "v": loop.v.copy(),
-                      "w": loop.w.copy(), "m": loop.m.copy()})
+                      "w": loop.w.copy(), "m": loop.node_mass.copy()})
 
     monkeypatch.setattr(RunOutputs, "record", spy)
     return snaps
@@ -92,7 +92,7 @@ def bar_impact(tmp_path_factory, monkeypatch):
 
     def spy(self, loop, force=False):
         record(self, loop, force)
-        snaps.append({"t": loop.t, "v": loop.v.copy(), "m": loop.m.copy()})
+        snaps.append({"t": loop.t, "v": loop.v.copy(), "m": loop.node_mass.copy()})
 
     monkeypatch.setattr(RunOutputs, "record", spy)
     deck, info = two_bars()

@@ -18,16 +18,32 @@ class HistoryWriter:
     """One CSV history: ``write(row)`` appends and flushes.
 
     columns: names with units, e.g. ``["time [ms]", "fz [kN]"]``.
+    resume: (byte offset, rows) of :meth:`position` saved earlier: the file is
+    cut there and written on (a resumed run), instead of started anew.
     """
 
-    def __init__(self, path: Path, columns: list[str]) -> None:
+    def __init__(self, path: Path, columns: list[str],
+                 resume: tuple[int, int] | None = None) -> None:
         self.path = Path(path)
         self.columns = columns
-        self._fh: IO[str] | None = open(self.path, "w", newline="")
+        if resume is not None and self.path.is_file():
+            offset, rows = resume
+            fh = open(self.path, "r+", newline="")
+            fh.truncate(offset)
+            fh.seek(offset)
+            self._fh: IO[str] | None = fh
+            self._csv = csv.writer(fh)
+            self.rows = rows
+            return
+        self._fh = open(self.path, "w", newline="")
         self._csv = csv.writer(self._fh)
         self._csv.writerow(columns)
         self._fh.flush()
         self.rows = 0
+
+    def position(self) -> tuple[int, int]:
+        """(byte offset of the end, rows written): where a resumed run goes on."""
+        return (self._fh.tell() if self._fh is not None else 0, self.rows)
 
     def write(self, row: list[float | int | str]) -> None:
         if self._fh is None:

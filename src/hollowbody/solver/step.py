@@ -1,0 +1,245 @@
+"""One central-difference cycle: ``step(model, plan, state, dt)``.
+
+The cycle from t^n to t^{n+1} (order as in the LS-DYNA / OpenRadioss engines):
+
+1. accelerations a^n = f^n / m (deformable nodes); rigid bodies from their
+   resultant force and moment;
+2. velocities v^{n+1/2} = v^{n-1/2} + dt_avg a^n; constraints (SPC,
+   prescribed motion, rigid-body motion) imposed on them;
+3. positions x^{n+1} = x^n + dt v^{n+1/2} (rigid nodes placed by their body,
+   tied slaves by their segments);
+4. forces f^{n+1}: element internal + hourglass + bulk viscosity, contact,
+   ties; rigid-body resultants; mass scaling; the next step
+   dt^{n+1} = TSSFAC * min dt_crit.
+
+``plan`` is the static :class:`~hollowbody.solver.setup.Assembly`; everything
+that changes lives in ``state`` (:class:`~hollowbody.solver.state.State`).
+A condition that ends the run (negative volume without erosion, ENDMAS,
+a non-finite force) raises :class:`Termination` once the cycle is complete,
+so the State is always that of a whole cycle. Messages of the step (erosion)
+are appended to ``state.events`` for the run loop to log.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+NORMAL = "normal termination"
+ERROR = "error termination"
+INTERRUPT = "user interrupt"
+
+
+class Termination(Exception):
+    """The run ends: ``status`` (NORMAL / ERROR / INTERRUPT), ``reason`` (one line)
+    and where (element, part, node ids)."""
+
+    def __init__(self, status: str, reason: str, **where: object) -> None:
+        super().__init__(reason)
+        self.status = status
+        self.reason = reason
+        self.where = where
+
+
+def start(model, plan, state) -> None:  # noqa: ANN001 - Model, Assembly, State
+    """Initial conditions and the forces at t = 0 (``state.dt_next``, ``state.dt0``).
+
+    Raises Termination when no deformable element sets a time step.
+    """
+    cons = plan.constraints
+    # prescribed rigid-body velocities hold from t = 0 (initial conditions, in the
+    # initial kinetic energy, not a jump in the first cycle)
+    cons.apply_rigid(0.0, 0.0)
+    for body in plan.bodies:
+        state.v[body.nodes] = body.node_velocities(state.x)
+    cons.apply_nodes(state.v, state.x, 0.0, 0.0)
+    if plan.ties is not None:  # [tied] slaves start with their segments' motion
+        plan.ties.start(state.x, state.v, state.w)
+    forces(model, plan, state, 0.0)
+    state.mass_scaling.work = 0.0  # mass added at t = 0 is in the initial energy
+    if not np.isfinite(state.dt_next) or state.dt_next <= 0.0:
+        raise Termination(ERROR, "no deformable element sets a time step "
+                          "(a model of rigid parts only cannot be run)")
+    state.dt0 = state.dt_next
+    state.dtmin_abs = model.controls.dtmin * state.dt0
+
+
+def step(model, plan, state, dt: float) -> None:  # noqa: ANN001 - Model, Assembly, State
+    """Advance ``state`` by one cycle of ``dt`` ms (t, cycle, x, v, f, histories)."""
+    dt_avg = 0.5 * dt if state.cycle == 0 else 0.5 * (state.dt + dt)
+    state.dt = dt
+    advance(plan, state, dt, dt_avg)
+    state.t += dt
+    state.cycle += 1
+    state.dt_min = min(state.dt_min, dt)
+    forces(model, plan, state, dt)
+
+
+def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
+    """Velocities to t^{n+1/2} and positions to t^{n+1} (steps 1-3 of the cycle)."""
+    x, v, f = state.x, state.v, state.f
+    cons = plan.constraints
+    v_free = v + dt_avg * f * state.inv_m[:, None]
+    v[:] = v_free
+    if plan.has_rotations:
+        state.w += dt_avg * state.mom * state.inv_i[:, None]
+        state.w[cons.fixed_rot] = 0.0
+    for body in plan.bodies:
+        body.advance_velocity(dt_avg)
+        free_v, free_w = body.vel_free, body.omega_free
+        cons.apply_rigid(state.t, dt)
+        # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
+        # (force times the step's displacement, as for prescribed nodes below)
+        state.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
+        state.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
+    cons.apply_nodes(v, x, state.t, dt)
+    pn = cons.prescribed_nodes
+    if pn.size:
+        dv = v[pn] - v_free[pn]
+        state.ext_work += float((state.node_mass[pn, None] * dv * v[pn]).sum())
+    x_old_rigid = [x[b.nodes].copy() for b in plan.bodies]
+    x += dt * v
+    for body, xr in zip(plan.bodies, x_old_rigid):
+        body.advance_position(dt, x)
+        if dt > 0.0:
+            v[body.nodes] = (x[body.nodes] - xr) / dt
+        if plan.has_rotations:
+            state.w[body.nodes] = body.omega
+    if plan.ties is not None:  # [tied] slaves placed on their moved segments
+        plan.ties.follow(x, v, state.w, dt)
+
+
+def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
+    """Forces at t^{n+1} into ``state.f`` / ``state.mom`` and the next step (step 4)."""
+    f = state.f
+    t0 = time.perf_counter()
+    dt_crit, elem, pid, ended = _element_pass(model, plan, state, dt)
+    t1 = time.perf_counter()
+    for c in plan.contacts:
+        c.add_forces(state.x, state.v, dt, state.cycle, f)
+    if plan.ties is not None:  # [tied] slave forces passed to the master nodes
+        plan.ties.distribute(f, state.mom)
+    t2 = time.perf_counter()
+    state.timing["elements"] += t1 - t0
+    state.timing["contact"] += t2 - t1
+    for body in plan.bodies:
+        body.gather(state.x, f, state.mom)
+    ms = state.mass_scaling
+    if ms.active:
+        ms.apply(state.v, state.w if plan.has_rotations else None)
+        if ms.target > 0.0:
+            dt_crit, elem, pid = ms.critical_step()
+    state.dt_next = plan.tssfac * dt_crit
+    state.dt_crit_elem = (elem, pid)
+    if ended is not None:
+        raise ended
+    if ms.target > 0.0 and ms.percent_added > model.controls.endmas:
+        pid = max(ms.added_mass, key=ms.added_mass.get)
+        raise Termination(ERROR, f"mass scaling added {ms.percent_added:.3g} % of the "
+                          f"model's mass (ENDMAS {model.controls.endmas:g} %), most in "
+                          f"part {pid}, at t={state.t:.6g} ms", part=pid)
+    if not np.all(np.isfinite(f)):
+        bad = int(np.nonzero(~np.isfinite(f).all(axis=1))[0][0])
+        nid = int(model.node_ids[bad])
+        elem, pid = element_at(plan, bad)
+        where = (f" in element {elem} (part {pid})" if elem >= 0 else
+                 " (no element of the node: from a contact or a load)")
+        raise Termination(ERROR, f"non-finite force at node {nid}{where} at t={state.t:.6g} "
+                          "ms", node=nid, element=elem, part=pid)
+
+
+def element_at(plan, node: int) -> tuple[int, int]:  # noqa: ANN001
+    """(element id, part id) of a live element on ``node`` with a non-finite
+    stress, else of any live element on it; (-1, -1) when none."""
+    first = (-1, -1)
+    for rt in plan.elements:
+        on = np.nonzero((np.asarray(rt.conn) == node).any(axis=1) & rt.alive)[0]
+        if on.size == 0:
+            continue
+        sick = on[~np.isfinite(rt.stress[on]).all(axis=1)]
+        if sick.size:
+            return int(rt.elem_ids[sick[0]]), int(rt.pid)
+        if first[0] < 0:
+            first = (int(rt.elem_ids[on[0]]), int(rt.pid))
+    return first
+
+
+def _element_pass(model, plan, state, dt: float
+                  ) -> tuple[float, int, int, Termination | None]:  # noqa: ANN001
+    """Element forces of every group into f (and moments); returns the smallest
+    scaled critical step with its element id and part id, and the termination
+    to raise at the end of the cycle (negative volume without erosion) or None.
+
+    With erosion on, elements with a negative volume (and, with DTMIN, those
+    whose step fell below it) are deleted and the pass is redone: groups
+    already updated this cycle are called again with dt = 0 (forces from their
+    updated stresses only).
+    """
+    erode = bool(plan.erode)
+    done: set[int] = set()
+    while True:
+        state.f[:] = 0.0
+        state.mom[:] = 0.0
+        dt_crit, elem, pid = np.inf, -1, -1
+        restart = False
+        ended: Termination | None = None
+        for k, rt in enumerate(plan.elements):
+            d, i, neg = _group_forces(rt, state, 0.0 if k in done else dt)
+            done.add(k)
+            small = erode and state.dtmin_abs > 0.0 and \
+                state.mass_scaling.target <= 0.0 and plan.tssfac * d < state.dtmin_abs
+            if neg >= 0 and not erode and ended is None:
+                eid = int(rt.elem_ids[neg])
+                if getattr(rt, "rotational", False):
+                    what = (f"shell element {eid} (part {rt.pid}) collapsed in its plane "
+                            "(area below 1% of the initial, or inside out)")
+                else:
+                    what = f"negative volume in solid element {eid} (part {rt.pid})"
+                ended = Termination(ERROR, f"{what} at t={state.t:.6g} ms", element=eid,
+                                    part=rt.pid)
+            if (neg >= 0 or small) and erode and _erode(plan, state, rt, small):
+                restart = True
+                break
+            if d < dt_crit and i >= 0:
+                dt_crit, elem, pid = d, int(rt.elem_ids[i]), rt.pid
+        if not restart:
+            return dt_crit, elem, pid, ended
+
+
+def _group_forces(rt, state, dt: float) -> tuple[float, int, int]:  # noqa: ANN001
+    """One group's forces; its critical step scaled by its ``step_factor``."""
+    if getattr(rt, "rotational", False):
+        d, i, neg = rt.add_forces(state.x, state.v, dt, state.f, state.w, state.mom)
+    else:
+        d, i, neg = rt.add_forces(state.x, state.v, dt, state.f)
+    return d * getattr(rt, "step_factor", 1.0), i, neg
+
+
+def _erode(plan, state, rt, small_step: bool) -> int:  # noqa: ANN001
+    """Delete the elements of ``rt`` whose volume is <= 0 (solids) and, with
+    ``small_step``, those whose step is below DTMIN x initial step, as
+    LS-DYNA's ERODE=1 does (solids and shells). Returns how many were deleted."""
+    volume = getattr(rt, "volume", None)
+    if volume is not None:
+        bad = (volume <= 0.0) & rt.alive
+        why = "negative volume"
+    else:  # shells: collapsed in their plane
+        bad = rt.inverted.copy()
+        why = "collapsed in its plane"
+    if small_step:
+        bad |= (plan.tssfac * getattr(rt, "step_factor", 1.0) * rt.dt_elem
+                < state.dtmin_abs) & rt.alive
+        why = f"{why} or time step below DTMIN"
+    bad = np.nonzero(bad)[0]
+    kind = "solid" if volume is not None else "shell"
+    for i in bad:
+        state.events.append(("info", f"erosion: {kind} element {int(rt.elem_ids[i])} "
+                                     f"(part {rt.pid}) deleted at t={state.t:.6g} ms ({why})"))
+    state.n_eroded += int(bad.size)
+    if bad.size:
+        rt.erode(bad)
+        for c in plan.contacts:  # their segments leave the contacts
+            if hasattr(c, "deactivate_elements"):
+                c.deactivate_elements(rt.pid, rt.elem_ids[bad])
+    return int(bad.size)
