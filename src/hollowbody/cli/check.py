@@ -1,8 +1,10 @@
 """``hollowbody check DECK.k [--json] [--strict]``: read and validate a deck.
 
 Prints a model summary (counts, parts, masses, extent, critical time steps,
-unsupported keywords) without running anything. Exit code 0 when the deck
-can run, 2 when it cannot (reasons listed) or is malformed (one error line).
+unsupported keywords) without running the deck: the run's set-up and its forces
+at t = 0 are computed, so the time step shown is the one the run takes first.
+Exit code 0 when the deck can run, 2 when it cannot (reasons listed) or is
+malformed (one error line).
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ def run(args: argparse.Namespace) -> int:
         model = build_model(deck)
     summary = summarize(model)
     summary["deck"] = args.deck
+    _first_step(model, summary)
     if args.json:
         print(json.dumps(summary))
     else:
@@ -46,6 +49,26 @@ def run(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return 2
     return 0
+
+
+def _first_step(model, summary: dict) -> None:  # noqa: ANN001 - Model
+    """The run's own first step and set-up checks (``summary["time_step"]``, problems)."""
+    from hollowbody.errors import DeckError
+    from hollowbody.solver.preflight import Termination, first_time_step
+
+    summary["time_step"] = {"solid": None, "shell": None, "tssfac": model.controls.tssfac,
+                            "run_dt": None}
+    if summary["problems"]:
+        return  # the set-up would fail on those first
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            summary["time_step"] = first_time_step(model)
+        except (DeckError, Termination) as exc:
+            summary["problems"].append(str(exc))
+            summary["can_run"] = False
+    summary["warnings"] = [str(w.message) for w in caught
+                           if not issubclass(w.category, UnsupportedKeywordWarning)]
 
 
 def _fmt_dt(step: dict | None) -> str:
@@ -88,13 +111,15 @@ def print_summary(s: dict) -> None:
     ts = s["time_step"]
     con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; shells {_fmt_dt(ts['shell'])}")
     if ts["run_dt"]:
-        con.print(f"run time step (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
+        con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "
                   f"{int(s['end_time'] / ts['run_dt']) if ts['run_dt'] else 0} cycles")
     if s["unsupported"]:
         con.print(f"unsupported keywords ({len(s['unsupported'])}, ignored):")
         for u in s["unsupported"]:
             con.print(f"  {u['file']}:{u['line']}: *{u['keyword']}", markup=False)
+    for w in s.get("warnings", []):
+        con.print(f"[yellow]warning:[/yellow] {escape(w)}")
     if s["problems"]:
         con.print("[bold red]cannot run:[/bold red]")
         for reason in s["problems"]:

@@ -1,12 +1,13 @@
-"""A model summary for ``hollowbody check``: counts, masses, extent, time steps.
+"""A model summary for ``hollowbody check``: counts, masses, extent.
 
 :func:`summarize` returns a JSON-ready dict; :func:`problems` lists why a
-model cannot run. Critical time steps are the element estimates LS-DYNA
-uses: solids ``L / c`` with ``L = V / (largest face area)`` (tetrahedra:
-smallest altitude ``3 V / largest face area``) and the dilatational wave
-speed ``c = sqrt((K + 4 G / 3) / rho)``; shells ``L = area / longest side``
-with the plate speed ``c = sqrt(E / (rho (1 - nu^2)))``. Rigid parts are
-skipped. Units: mm, ms, kg (deck units; ``c`` in mm/ms).
+model cannot run. The time step is not estimated here: ``check`` reports the
+run's own first step (:mod:`hollowbody.solver.preflight`). The element lengths
+and wave speeds below are LS-DYNA's estimates, used to flag parts that could
+not set a step (zero wave speed): solids ``L = V / (largest face area)``
+(tetrahedra: smallest altitude ``3 V / largest face area``) and
+``c = sqrt((K + 4 G / 3) / rho)``; shells ``L = area / longest side`` with
+``c = sqrt(E / (rho (1 - nu^2)))``. Units: mm, ms, kg (``c`` in mm/ms).
 """
 
 from __future__ import annotations
@@ -111,19 +112,6 @@ def shell_lengths(conn: np.ndarray, x: np.ndarray) -> np.ndarray:
     return quad_areas(conn, x) / np.maximum(sides, 1e-300)
 
 
-def _min_step(groups: list, lengths, speed, x: np.ndarray) -> dict | None:
-    best = None
-    for g in groups:
-        c = speed(g.pid)
-        if c <= 0.0 or g.conn.shape[0] == 0:
-            continue
-        dt = lengths(g.conn, x) / c
-        k = int(np.argmin(dt))
-        if best is None or dt[k] < best["dt"]:
-            best = {"dt": float(dt[k]), "element": int(g.elem_ids[k]), "part": int(g.pid)}
-    return best
-
-
 def summarize(model: Model) -> dict:
     """JSON-ready summary of ``model`` (see the module docstring for the time steps)."""
     x = model.node_x0
@@ -151,12 +139,6 @@ def summarize(model: Model) -> dict:
                       "material": f"*{mat.keyword or mat.kind} {mat.mid}",
                       "mass_kg": float(part_mass.get(pid, 0.0))})
     extra = float(model.node_extra_mass.sum())
-    tssfac = model.controls.tssfac
-    solid = _min_step(model.solid_groups, solid_lengths,
-                      lambda pid: solid_wave_speed(model, pid), x)
-    shell = _min_step(model.shell_groups, shell_lengths,
-                      lambda pid: shell_wave_speed(model, pid), x)
-    steps = [s["dt"] for s in (solid, shell) if s]
     summary = {
         "title": model.title,
         "nodes": model.n_nodes,
@@ -166,8 +148,6 @@ def summarize(model: Model) -> dict:
         "element_mass_kg": extra,
         "bounding_box": {"min": x.min(axis=0).tolist() if x.size else None,
                          "max": x.max(axis=0).tolist() if x.size else None},
-        "time_step": {"solid": solid, "shell": shell, "tssfac": tssfac,
-                      "run_dt": tssfac * min(steps) if steps else None},
         "end_time": model.controls.end_time,
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),

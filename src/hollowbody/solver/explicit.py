@@ -246,8 +246,7 @@ def _final_dump(model, state: State, outputs: RunOutputs, extra: dict,  # noqa: 
         outputs.log("no restart file written: the state holds non-finite numbers",
                     logging.WARNING)
         return
-    try:
-        outputs.record(state, force=True)  # the dump's outputs include the last row
+    try:  # before the final row is written: a resumed run continues without it
         _dump(model, state, outputs, extra)
     except OSError as exc:
         outputs.log(f"could not write the restart file: {exc}", logging.ERROR)

@@ -65,6 +65,9 @@ class MassScaling:
     run, updated in place; inv_m, inv_i: their inverses, updated in place.
     """
 
+    #: time-varying attributes (saved by the run's State); the node arrays belong to it
+    STATE_FIELDS = ("added_mass", "work")
+
     def __init__(self, elements: list, target: float, node_mass: np.ndarray,
                  node_inertia: np.ndarray, inv_m: np.ndarray, inv_i: np.ndarray) -> None:
         self.target = float(abs(target))

@@ -1,0 +1,51 @@
+"""What a run would do at t = 0, without running: the first time step and the set-up
+errors (``hollowbody check``).
+
+The first step is the run's own: the plan is assembled, the State initialised
+and the forces at t = 0 computed exactly as :func:`hollowbody.solver.explicit.run`
+does (:func:`hollowbody.solver.step.start`), so ``check`` and ``run`` agree by
+construction and ``check`` rejects every deck the run's set-up rejects, with the
+same message.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.solver.setup import assemble
+from hollowbody.solver.state import init_state
+from hollowbody.solver.step import Termination, start
+
+
+def _smallest(plan, rotational: bool) -> dict | None:  # noqa: ANN001 - Assembly
+    best = None
+    for rt in plan.elements:
+        if bool(getattr(rt, "rotational", False)) != rotational or rt.n_elem == 0:
+            continue
+        d = np.asarray(rt.dt_elem) * getattr(rt, "step_factor", 1.0)
+        k = int(np.argmin(d))
+        if np.isfinite(d[k]) and (best is None or d[k] < best["dt"]):
+            best = {"dt": float(d[k]), "element": int(rt.elem_ids[k]), "part": int(rt.pid)}
+    return best
+
+
+def first_time_step(model) -> dict:  # noqa: ANN001 - Model
+    """The run's time steps at t = 0 (ms).
+
+    Returns {"solid": {dt, element, part} or None, "shell": ... (the smallest
+    critical step of each element family, before TSSFAC, with its step
+    factor), "tssfac", "run_dt" (the first step the run takes), "element",
+    "part" (what sets it), "mass_scaling_target"}. Raises DeckError for what
+    the run's set-up rejects and :class:`~hollowbody.solver.step.Termination`
+    when nothing sets a step.
+    """
+    plan = assemble(model)
+    state = init_state(model, plan)
+    start(model, plan, state)
+    elem, pid = state.dt_crit_elem
+    return {"solid": _smallest(plan, False), "shell": _smallest(plan, True),
+            "tssfac": plan.tssfac, "run_dt": float(state.dt_next), "element": int(elem),
+            "part": int(pid), "mass_scaling_target": state.mass_scaling.target}
+
+
+__all__ = ["Termination", "first_time_step"]
