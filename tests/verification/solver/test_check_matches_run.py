@@ -1,0 +1,52 @@
+"""``hollowbody check`` predicts the run's first time step.
+
+``check`` computes the run's set-up and its forces at t = 0 with the run's own
+code (:mod:`hollowbody.solver.preflight`), so its time step must equal the
+first step of a run of the same deck; the tolerance (1e-12 relative) only
+allows for the JSON round trip.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from hollowbody.api import run_model
+from hollowbody.cli.main import main as cli_main
+from hollowbody.io.keyword import read_deck
+from hollowbody.io.keyword.writer import write_deck
+from hollowbody.model.builder import build_model
+from hollowbody.scenarios.block import BlockConfig, build_block_deck
+
+DECKS = Path(__file__).resolve().parents[2] / "regression" / "decks"
+REGRESSION = [DECKS / "hand_check.k", DECKS / "shapes.k", DECKS / "block" / "main.k"]
+
+
+def _block(tmp_path: Path, structure: str) -> Path:
+    path = tmp_path / f"block_{structure}.k"
+    write_deck(build_block_deck(BlockConfig(tissue="muscle", structure=structure,
+                                            speed_kmh=40)), path)
+    return path
+
+
+def _check_and_run(path: Path, tmp_path: Path, capsys) -> tuple[float, float]:
+    code = cli_main(["check", str(path), "--json"])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 0, s["problems"]
+    model = build_model(read_deck(path))
+    run = run_model(model, tmp_path / "run", vtk=False, end_time=1e-9)
+    return s["time_step"]["run_dt"], run.summary["dt_initial_ms"]
+
+
+@pytest.mark.parametrize("deck", REGRESSION, ids=lambda p: p.name)
+def test_check_predicts_the_first_step_of_regression_decks(deck, tmp_path, capsys):
+    predicted, taken = _check_and_run(deck, tmp_path, capsys)
+    assert predicted == pytest.approx(taken, rel=1e-12)
+
+
+@pytest.mark.parametrize("structure", ["solid", "hollow"])
+def test_check_predicts_the_first_step_of_the_block_decks(structure, tmp_path, capsys):
+    predicted, taken = _check_and_run(_block(tmp_path, structure), tmp_path, capsys)
+    assert predicted == pytest.approx(taken, rel=1e-12)
