@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import hollowbody.cli.main as cli_main
+from hollowbody.build import build_model
 from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
 from hollowbody.hollow.examples import write_multipart_deck
 from hollowbody.hollow.output import write_converted
@@ -26,7 +27,6 @@ from hollowbody.io.keyword import (
     TiedContact,
     read_deck,
 )
-from hollowbody.model.builder import build_model
 from hollowbody.model.mass import lumped_node_mass
 
 
