@@ -65,7 +65,7 @@ from hollowbody.io.keyword import (
 from hollowbody.model.mass import point_mass_properties
 from hollowbody.model.model import Model
 from hollowbody.model.summary import solid_kinds
-from hollowbody.scenarios.tissues import TISSUES
+from hollowbody.tissues import TISSUES
 
 #: MAT_181 bulk modulus (GPa) from which the paper's muscle wall material is the default.
 MUSCLE_KM = 0.1
