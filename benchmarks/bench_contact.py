@@ -21,13 +21,8 @@ import numba
 import numpy as np
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import (
-    PartSpec,
-    assemble_model,
-    block_mesh,
-    part_contact,
-    plate_mesh,
-)
+from hollowbody.mesh import block_mesh, plate_mesh
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 
 def build(kind: str, n_block: int = 70, n_plate: int = 100):

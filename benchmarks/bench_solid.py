@@ -22,7 +22,7 @@ import numpy as np
 
 from hollowbody.elements.assembly import scatter_add
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh
+from hollowbody.mesh import block_mesh
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -32,7 +32,7 @@ MUSCLE_MPA = np.array([-11.8, -4.15, -1.90, -0.987, -0.543, -0.299, -0.153, -0.0
 
 
 def make_runtime(kind: str, ihq: int = 1) -> tuple[SolidGroupRuntime, np.ndarray]:
-    x0, conn = block_mesh(40, 40, 32, (300.0, 300.0, 240.0))
+    x0, conn = block_mesh((40, 40, 32), (300.0, 300.0, 240.0))
     group = SolidGroup(1, np.arange(1, conn.shape[0] + 1, dtype=np.int64), conn)
     curves = {}
     if kind == "elastic":

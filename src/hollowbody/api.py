@@ -15,8 +15,8 @@ from hollowbody.solver.explicit import RunOptions, RunResult, run
 
 def load_model(deck: str | Path, strict: bool = False) -> Model:
     """Read and validate a keyword deck into a :class:`Model` (DeckError on bad input)."""
+    from hollowbody.build import build_model
     from hollowbody.io.keyword import read_deck
-    from hollowbody.model.builder import build_model
 
     return build_model(read_deck(Path(deck), strict=strict))
 

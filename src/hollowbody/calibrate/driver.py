@@ -48,8 +48,8 @@ from hollowbody.calibrate.reference import ensure_references
 from hollowbody.calibrate.runner import SerialRunner
 from hollowbody.calibrate.simulate import EXCEPTION, INTERRUPT, LOST, NORMAL
 from hollowbody.calibrate.space import ParameterSpace
+from hollowbody.curves.force_displacement import ForceDisplacement
 from hollowbody.errors import UserInputError
-from hollowbody.report.force_displacement import ForceDisplacement
 
 CHECKPOINT = "checkpoint.json"
 CACHE = "evaluations.jsonl"

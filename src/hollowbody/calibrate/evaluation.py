@@ -27,9 +27,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hollowbody.calibrate.fitness import FitnessSettings, curve_distance, smoothed
+from hollowbody.calibrate.fitness import FitnessSettings, curve_distance
 from hollowbody.calibrate.simulate import EXCEPTION, NORMAL
-from hollowbody.report.force_displacement import ForceDisplacement, write_csv
+from hollowbody.curves.force_displacement import ForceDisplacement, smoothed, write_csv
 
 
 def speed_dir(speed_kmh: float) -> str:

@@ -6,8 +6,10 @@ Definition (one speed)
 1. **Filter.** Contact forces of explicit runs carry high-frequency noise
    (single-cycle spikes several times the mean force). The force is resampled
    on a uniform time grid and low-pass filtered with the SAE J211 channel
-   frequency class filter (phaseless 2-pole Butterworth applied forward and
-   backward), CFC 180 by default. Displacements are not filtered.
+   frequency class filter (:func:`hollowbody.curves.cfc.cfc_filter`: a 2-pole
+   Butterworth applied forward and backward), CFC 180 by default
+   (:func:`hollowbody.curves.force_displacement.smoothed`). Displacements are
+   not filtered.
 2. **Normalise.** Displacements are divided by the reference's maximum
    displacement ``D`` (mm), forces by the reference's peak filtered force
    ``P`` (kN), so curves of soft fat and stiff muscle, at 40 or 100 km/h, give
@@ -47,9 +49,8 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy.signal import filtfilt
 
-from hollowbody.report.force_displacement import ForceDisplacement
+from hollowbody.curves.force_displacement import ForceDisplacement, smoothed
 
 
 @dataclass(frozen=True)
@@ -64,51 +65,6 @@ class FitnessSettings:
 
     def to_dict(self) -> dict:
         return asdict(self)
-
-
-def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
-    """SAE J211 CFC filter of ``y`` sampled at uniform times ``t`` (ms); (k,) -> (k,).
-
-    Second-order Butterworth low-pass with the J211 pre-warped cut-off
-    (design frequency 2.0775 * CFC Hz), applied forward and backward (zero
-    phase). The signal is padded with its first and last values (a contact
-    force is zero before the impact), not mirrored, so a steep start does not
-    leave an offset. Signals shorter than 16 samples are returned unchanged.
-    """
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    if y.size < 16:
-        return y.copy()
-    dt_s = (t[-1] - t[0]) / (t.size - 1) * 1e-3
-    wd = 2.0 * np.pi * cfc * 2.0775
-    wa = np.tan(0.5 * wd * dt_s)
-    den = 1.0 + np.sqrt(2.0) * wa + wa * wa
-    a0 = wa * wa / den
-    b1 = -2.0 * (wa * wa - 1.0) / den
-    b2 = (-1.0 + np.sqrt(2.0) * wa - wa * wa) / den
-    return filtfilt([a0, 2.0 * a0, a0], [1.0, -b1, -b2], y, padtype="constant")
-
-
-def uniform_in_time(curve: ForceDisplacement) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(time, displacement, force) resampled on a uniform time grid (repeated times
-    dropped; the step is the median sampling interval)."""
-    t = np.asarray(curve.time, dtype=float)
-    keep = np.concatenate([[True], np.diff(t) > 0.0]) if t.size else np.zeros(0, bool)
-    t, d, f = t[keep], np.asarray(curve.displacement)[keep], np.asarray(curve.force)[keep]
-    if t.size < 2:
-        return t, d, f
-    dt = float(np.median(np.diff(t)))
-    n = int(round((t[-1] - t[0]) / dt)) + 1
-    tu = np.linspace(t[0], t[-1], max(n, 2))
-    return tu, np.interp(tu, t, d), np.interp(tu, t, f)
-
-
-def smoothed(curve: ForceDisplacement, cfc: float | None = 180.0) -> ForceDisplacement:
-    """The curve on a uniform time grid with its force CFC-filtered (``cfc`` None: raw)."""
-    t, d, f = uniform_in_time(curve)
-    if cfc:
-        f = cfc_filter(t, f, cfc)
-    return ForceDisplacement(t, d, f, curve.label)
 
 
 def _branch(d: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

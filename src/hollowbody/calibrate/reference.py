@@ -23,7 +23,7 @@ import numpy as np
 
 from hollowbody.calibrate.evaluation import finite_or_none, speed_dir
 from hollowbody.calibrate.simulate import EXCEPTION, NORMAL
-from hollowbody.report.force_displacement import ForceDisplacement, write_csv
+from hollowbody.curves.force_displacement import ForceDisplacement, write_csv
 
 CURVE_FILE = "force_displacement.csv"
 REFERENCE_FILE = "reference.json"
@@ -34,7 +34,7 @@ class ReferenceRunError(RuntimeError):
 
 
 def read_curve_csv(path: str | Path, label: str = "") -> ForceDisplacement:
-    """A curve written by :func:`~hollowbody.report.force_displacement.write_csv`."""
+    """A curve written by :func:`~hollowbody.curves.force_displacement.write_csv`."""
     data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     if data.size == 0:
         return ForceDisplacement(np.zeros(0), np.zeros(0), np.zeros(0), label)

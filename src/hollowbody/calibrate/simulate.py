@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any, Protocol
 
 from hollowbody.calibrate.space import PARAMETERS
-from hollowbody.report.force_displacement import ForceDisplacement
+from hollowbody.curves.force_displacement import ForceDisplacement
 
 NORMAL = "normal termination"
 ERROR = "error termination"

@@ -15,7 +15,7 @@ Element counts are the run's (the rigid impactor's shells included);
 ``eroded_elements`` is the number of elements the run deleted (the hollow
 block erodes wall shells crushed in their plane; None when the run does not
 report it). Peak forces are CFC-filtered
-(:func:`hollowbody.calibrate.fitness.smoothed`) and raw (unfiltered, single-cycle
+(:func:`hollowbody.curves.force_displacement.smoothed`) and raw (unfiltered, single-cycle
 contact spikes included). Quality indicators from the run's summary:
 ``energy_ratio`` (total / initial energy at the end), ``hourglass_percent``
 (hourglass energy in % of the total at the end) and ``pass_through_nodes``
@@ -41,10 +41,10 @@ from hollowbody.calibrate.evaluation import (
     pass_through_nodes,
     speed_dir,
 )
-from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.reference import read_curve_csv
 from hollowbody.calibrate.runner import SerialRunner
 from hollowbody.calibrate.simulate import EXCEPTION, LOST
+from hollowbody.curves.force_displacement import smoothed
 from hollowbody.errors import UserInputError
 from hollowbody.scenarios.block import impact_outcome
 
@@ -105,7 +105,7 @@ def run_study_task(task: StudyTask) -> dict:
         return row
     csv = rd / "force_displacement.csv"
     if not csv.exists():
-        from hollowbody.report.force_displacement import write_csv
+        from hollowbody.curves.force_displacement import write_csv
 
         rd.mkdir(parents=True, exist_ok=True)
         write_csv(curve, csv)
@@ -119,7 +119,7 @@ def _warm_up(arg: tuple[Any, dict[str, float]]) -> None:
 
 def hollow_from_calibration(path: str | Path) -> dict[str, float]:
     """Best wall parameters of a ``calibration.json`` (calibrated, fixed and defaults)."""
-    from hollowbody.report.calibration import effective_wall
+    from hollowbody.calibrate.wall import effective_wall
 
     p = Path(path)
     try:

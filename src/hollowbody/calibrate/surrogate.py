@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.calibrate.simulate import ERROR, NORMAL, RunOutcome
-from hollowbody.report.force_displacement import ForceDisplacement, write_csv
+from hollowbody.curves.force_displacement import ForceDisplacement, write_csv
 from hollowbody.units import kmh_to_mm_per_ms
 
 MASS = 5.0  # kg

@@ -112,7 +112,7 @@ def _compare(cfg, out: Path, args: argparse.Namespace) -> int:
     from dataclasses import replace
 
     from hollowbody.cli.run import exit_code
-    from hollowbody.report.force_displacement import plot
+    from hollowbody.curves.plot import plot
     from hollowbody.scenarios.block import block_impact
 
     results = {}

@@ -143,7 +143,8 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.calibrate.progress import make_progress
     from hollowbody.calibrate.reference import ReferenceRunError
     from hollowbody.calibrate.runner import make_runner
-    from hollowbody.report.calibration import WALL_UNITS, effective_wall, write_report
+    from hollowbody.calibrate.wall import WALL_UNITS, effective_wall
+    from hollowbody.report.calibration import write_report
 
     settings, sim = build_settings(args)
     out: Path = args.out

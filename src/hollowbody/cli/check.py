@@ -14,8 +14,8 @@ import json
 import sys
 import warnings
 
+from hollowbody.build import build_model
 from hollowbody.io.keyword import UnsupportedKeywordWarning, read_deck
-from hollowbody.model.builder import build_model
 from hollowbody.model.summary import summarize
 
 

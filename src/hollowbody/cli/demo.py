@@ -38,10 +38,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 def main(args: argparse.Namespace) -> int:
     import sys
 
-    from hollowbody.calibrate.demo import BUDGETS, run_demo
     from hollowbody.calibrate.driver import CalibrationError
     from hollowbody.calibrate.progress import make_progress
     from hollowbody.calibrate.reference import ReferenceRunError
+    from hollowbody.report.demo import BUDGETS, run_demo
 
     if args.workers < 1:
         raise UserInputError(f"--workers must be at least 1 (got {args.workers})")

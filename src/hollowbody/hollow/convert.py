@@ -38,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hollowbody.build import build_model
 from hollowbody.errors import UserInputError
 from hollowbody.hollow import deck_edit as de
 from hollowbody.hollow.boundary import boundary_faces, solid_mass_properties, solid_tets
@@ -61,11 +62,10 @@ from hollowbody.io.keyword import (
     ShellElements,
     SolidElements,
 )
-from hollowbody.model.builder import build_model
 from hollowbody.model.mass import point_mass_properties
 from hollowbody.model.model import Model
 from hollowbody.model.summary import solid_kinds
-from hollowbody.scenarios.tissues import TISSUES
+from hollowbody.tissues import TISSUES
 
 #: MAT_181 bulk modulus (GPa) from which the paper's muscle wall material is the default.
 MUSCLE_KM = 0.1

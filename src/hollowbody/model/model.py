@@ -1,6 +1,6 @@
 """The static model: everything a run needs that does not change in time.
 
-A :class:`Model` is produced by :func:`hollowbody.model.builder.build_model`
+A :class:`Model` is produced by :func:`hollowbody.build.build_model`
 from a parsed keyword deck (ids resolved to 0-based indices, references
 checked). The solver never looks at keyword text; it only sees this.
 
@@ -16,20 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-# ---------------------------------------------------------------------------
-# Source locations (for messages that name file and line)
-
-
-@dataclass(frozen=True)
-class Source:
-    """Where a definition came from: file path (as given) and 1-based line."""
-
-    file: str = "<api>"
-    line: int = 0
-
-    def __str__(self) -> str:
-        return f"{self.file}:{self.line}"
-
+from hollowbody.source import Source
 
 # ---------------------------------------------------------------------------
 # Curves, materials, sections, hourglass

@@ -31,13 +31,10 @@ from pathlib import Path
 
 import numpy as np
 
-from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.reference import read_curve_csv
-from hollowbody.report.force_displacement import ForceDisplacement, clip_force_axis
-
-#: Hollow wall values used when a parameter is neither calibrated nor fixed (the block's).
-WALL_DEFAULTS = {"etan": 0.0, "thickness": 1.5}
-WALL_UNITS = {"E": "MPa", "yield": "MPa", "etan": "MPa", "thickness": "mm"}
+from hollowbody.calibrate.wall import WALL_UNITS, effective_wall
+from hollowbody.curves.force_displacement import ForceDisplacement, smoothed
+from hollowbody.curves.plot import clip_force_axis
 
 
 def _plt():
@@ -126,19 +123,9 @@ def plot_overlay(pairs: list[tuple[float, ForceDisplacement, ForceDisplacement |
     plt.close(fig)
 
 
-def effective_wall(data: dict) -> dict[str, float] | None:
-    """Best wall parameters of a calibration with fixed/default values filled in."""
-    best = data.get("best_parameters")
-    if best is None:
-        return None
-    fixed = data.get("simulator", {}).get("fixed", {}) or {}
-    values = {**WALL_DEFAULTS, **fixed, **best}
-    return {k: float(values[k]) for k in WALL_UNITS if k in values}
-
-
 def table1_row(data: dict) -> dict:
     """One Table 1 row (CSV field -> value) of a calibration's ``calibration.json`` data."""
-    from hollowbody.scenarios.tissues import tissue
+    from hollowbody.tissues import tissue
 
     t = tissue(data["tissue"])
     wall = effective_wall(data) or {}

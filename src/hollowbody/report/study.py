@@ -22,9 +22,9 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from hollowbody.calibrate.fitness import smoothed
 from hollowbody.calibrate.study import load_curves
-from hollowbody.report.force_displacement import clip_force_axis
+from hollowbody.curves.force_displacement import smoothed
+from hollowbody.curves.plot import clip_force_axis
 from hollowbody.scenarios.block import THROUGH_BASE
 
 COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",

@@ -33,9 +33,11 @@ from pathlib import Path
 
 import numpy as np
 
-from hollowbody.report import force_displacement as fdr
-from hollowbody.scenarios.geometry import block_mesh, cylinder_impactor_mesh, sphere_impactor_mesh
-from hollowbody.scenarios.tissues import tissue
+from hollowbody.curves import force_displacement as fdr
+from hollowbody.curves.plot import plot as plot_curves
+from hollowbody.mesh import standing_block
+from hollowbody.scenarios.geometry import cylinder_impactor_mesh, sphere_impactor_mesh
+from hollowbody.tissues import tissue
 from hollowbody.units import kmh_to_mm_per_ms
 
 BLOCK_SIZE = (180.0, 180.0, 90.0)
@@ -233,7 +235,7 @@ def _add_solid_block(deck, cfg: BlockConfig):
     )
 
     t = tissue(cfg.tissue)
-    xb, cb = block_mesh(BLOCK_SIZE, cfg.mesh)
+    xb, cb = standing_block(BLOCK_SIZE, cfg.mesh)
     ids = np.arange(1, xb.shape[0] + 1)
     deck.add_nodes(ids, xb)
     deck.add_solids(np.arange(1, cb.shape[0] + 1), PID_TISSUE, ids[cb])
@@ -348,7 +350,7 @@ def block_impact(cfg: BlockConfig, out_dir: str | Path, vtk: bool = True,
         s = json.loads(summary_path.read_text())
         s["impact_outcome"] = outcome
         summary_path.write_text(json.dumps(s, indent=2))
-    fdr.plot([curve], out / "force_displacement.png",
+    plot_curves([curve], out / "force_displacement.png",
              title=f"block test: {cfg.structure} {tissue(cfg.tissue).name}, "
                    f"{cfg.speed_kmh:g} km/h ({result.status})")
     return BlockResult(curve=curve, summary=result.summary, out_dir=out, config=cfg)

@@ -1,4 +1,5 @@
-"""Meshes of the block test: a structured hexahedral block and rigid impactor surfaces.
+"""Meshes of the block test's rigid impactor surfaces (the block itself:
+:func:`hollowbody.mesh.standing_block`).
 
 All functions return plain arrays: node coordinates (n, 3) float64 mm and
 connectivities as 0-based indices into them (LS-DYNA node order), so the
@@ -8,37 +9,6 @@ caller assigns ids.
 from __future__ import annotations
 
 import numpy as np
-
-
-def block_mesh(size: tuple[float, float, float], h: float) -> tuple[np.ndarray, np.ndarray]:
-    """Hexahedral mesh of the box [0, sx] x [0, sy] x [0, sz] with element edge ``h``.
-
-    The block is centred in x and y on the origin (x in [-sx/2, sx/2]) and
-    stands on z = 0. Returns (nodes (n, 3) mm, conn (e, 8) int64). ``h`` must
-    divide every side (to 1e-9 relative), else ValueError.
-    """
-    counts = []
-    for s in size:
-        k = s / h
-        if abs(k - round(k)) > 1e-9 * max(k, 1.0) or round(k) < 1:
-            raise ValueError(f"mesh size {h:g} mm does not divide the block side {s:g} mm")
-        counts.append(int(round(k)))
-    nx, ny, nz = counts
-    xs = np.linspace(-size[0] / 2, size[0] / 2, nx + 1)
-    ys = np.linspace(-size[1] / 2, size[1] / 2, ny + 1)
-    zs = np.linspace(0.0, size[2], nz + 1)
-    zz, yy, xx = np.meshgrid(zs, ys, xs, indexing="ij")
-    nodes = np.column_stack([xx.ravel(), yy.ravel(), zz.ravel()])
-
-    def nid(i, j, k):
-        return (k * (ny + 1) + j) * (nx + 1) + i
-
-    k, j, i = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nx), indexing="ij")
-    i, j, k = i.ravel(), j.ravel(), k.ravel()
-    conn = np.column_stack([nid(i, j, k), nid(i + 1, j, k), nid(i + 1, j + 1, k),
-                            nid(i, j + 1, k), nid(i, j, k + 1), nid(i + 1, j, k + 1),
-                            nid(i + 1, j + 1, k + 1), nid(i, j + 1, k + 1)])
-    return nodes, conn.astype(np.int64)
 
 
 def _disc_ogrid(radius: float, n: int, rings: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -8,7 +8,7 @@
   thickness 5 mm femur / 4 mm tibia);
 - muscle: hexahedra filling the annulus between bone and skin,
   *MAT_SIMPLIFIED_RUBBER with the default skeletal-muscle curve and bulk
-  modulus of :mod:`hollowbody.scenarios.tissues`;
+  modulus of :mod:`hollowbody.tissues`;
 - skin: a shell tube, *MAT_ELASTIC E 5 MPa, PR 0.45, 1 mm, 1.1e-6 kg/mm^3.
 
 Muscle, bone and skin share their nodes (bone = inner, skin = outer surface
@@ -62,7 +62,7 @@ from hollowbody.io.keyword import (
     ShellElements,
     SolidElements,
 )
-from hollowbody.scenarios.tissues import tissue
+from hollowbody.tissues import tissue
 
 PID_BONE, PID_MUSCLE, PID_SKIN, PID_IMPACTOR = 1, 2, 3, 4
 #: Segment geometry (mm): bone outer radius, cortical thickness, soft-tissue radius, length.
@@ -279,10 +279,10 @@ def run_three_point_bending(out_dir: str | Path, segment: str = "thigh",
     available is reported as skipped.
     """
     from hollowbody.api import run_deck
+    from hollowbody.curves import force_displacement as fdr
     from hollowbody.errors import DeckError
     from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
     from hollowbody.io.keyword import write_deck
-    from hollowbody.report import force_displacement as fdr
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

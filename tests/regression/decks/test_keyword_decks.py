@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.cli.main import main
 from hollowbody.io.keyword import Include, read_deck
-from hollowbody.model.builder import build_model
 
 HERE = Path(__file__).resolve().parent
 DECKS = sorted(p for p in HERE.rglob("*.k") if "mesh" not in p.parts)

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 import hollowbody.cli.main as cli_main
+from hollowbody.build import build_model
 from hollowbody.io.keyword import read_deck
-from hollowbody.model.builder import build_model
 
 HERE = Path(__file__).resolve().parent
 DECK = HERE / "deck" / "main.k"

@@ -5,14 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hollowbody.calibrate.fitness import (
-    FitnessSettings,
-    cfc_filter,
-    curve_distance,
-    smoothed,
-)
+from hollowbody.calibrate.fitness import FitnessSettings, curve_distance
 from hollowbody.calibrate.surrogate import surrogate_curve
-from hollowbody.report.force_displacement import ForceDisplacement
+from hollowbody.curves.force_displacement import ForceDisplacement
 
 
 @pytest.fixture(scope="module")
@@ -80,19 +75,3 @@ def test_loading_and_unloading_both_count(ref):
 def test_empty_candidate_gets_the_penalty(ref):
     empty = ForceDisplacement(np.zeros(0), np.zeros(0), np.zeros(0))
     assert curve_distance(ref, empty, FitnessSettings(penalty=7.0)) == 7.0
-
-
-def test_cfc_filter_keeps_slow_and_removes_fast_signals():
-    t = np.linspace(0.0, 20.0, 1001)  # ms, 50 kHz
-    slow = np.sin(2 * np.pi * 0.05 * t)  # 50 Hz
-    fast = 0.5 * np.sin(2 * np.pi * 5.0 * t)  # 5 kHz
-    out = cfc_filter(t, slow + fast, 180.0)
-    core = slice(100, -100)
-    assert np.max(np.abs(out[core] - slow[core])) < 0.03
-
-
-def test_smoothed_drops_repeated_times():
-    c = ForceDisplacement(np.array([0.0, 0.1, 0.1, 0.2, 0.3]), np.arange(5.0),
-                          np.ones(5))
-    s = smoothed(c, None)
-    assert np.all(np.diff(s.time) > 0)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 
 from hollowbody.calibrate import SerialRunner, SurrogateSimulator
-from hollowbody.calibrate.demo import BUDGETS, run_demo
 from hollowbody.calibrate.study import run_study
+from hollowbody.report.demo import BUDGETS, run_demo
 from hollowbody.report.study import wall_time_ratios, write_study_report
 
 

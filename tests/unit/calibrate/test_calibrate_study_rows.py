@@ -9,7 +9,7 @@ import numpy as np
 from hollowbody.calibrate import SurrogateSimulator
 from hollowbody.calibrate.evaluation import eroded_count, hourglass_percent, pass_through_nodes
 from hollowbody.calibrate.study import StudyTask, run_study, run_study_task
-from hollowbody.report.force_displacement import ForceDisplacement
+from hollowbody.curves.force_displacement import ForceDisplacement
 from hollowbody.report.study import study_markdown, write_study_report
 
 
@@ -89,7 +89,7 @@ def test_study_table_has_eroded_column(tmp_path):
 
 
 def test_demo_index_warns_about_coarse_mesh_stability():
-    from hollowbody.calibrate.demo import BUDGETS, study_caveats
+    from hollowbody.report.demo import BUDGETS, study_caveats
 
     coarse = " ".join(study_caveats(BUDGETS["default"]))
     assert "15 mm" in coarse and "--mesh 7.5" in coarse
@@ -100,7 +100,7 @@ def test_demo_index_warns_about_coarse_mesh_stability():
 def test_demo_yield_bounds_reach_the_coarse_mesh_optimum():
     """On the demo's 15 mm mesh the best muscle walls yield at 15-20 MPa (paper: 4 MPa at
     its mesh): the demo's yield range must contain both."""
-    from hollowbody.calibrate.demo import BUDGETS
+    from hollowbody.report.demo import BUDGETS
 
     for budget in BUDGETS.values():
         lo, hi = dict(budget.bounds)["yield"]

@@ -6,14 +6,9 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import (
-    PartSpec,
-    assemble_model,
-    block_mesh,
-    part_contact,
-    plate_mesh,
-)
+from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import ContactDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 E_BLOCK, NU = 0.01, 0.3
 K_BLOCK = E_BLOCK / (3 * (1 - 2 * NU))

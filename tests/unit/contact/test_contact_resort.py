@@ -15,16 +15,11 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import (
-    PartSpec,
-    assemble_model,
-    block_mesh,
-    part_contact,
-    plate_mesh,
-)
 from hollowbody.contact.runtime import _drop_dead
+from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import ContactDef
 from hollowbody.model.model import SurfaceRef as Ref
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 
 class AllPairs(ContactRuntime):

@@ -6,15 +6,10 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime, build_surface
-from hollowbody.contact.examples import (
-    PartSpec,
-    assemble_model,
-    block_mesh,
-    part_contact,
-    plate_mesh,
-)
 from hollowbody.errors import UserInputError
+from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import ContactDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 
 def _rigid_cube_on_block(depth=0.3):

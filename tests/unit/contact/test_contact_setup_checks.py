@@ -7,9 +7,10 @@ from types import SimpleNamespace
 import numpy as np
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import PartSpec, assemble_model, plate_mesh
 from hollowbody.contact.geometry import project_triangle
+from hollowbody.mesh import plate_mesh
 from hollowbody.model.model import ContactDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model
 
 
 def _folded_sheet_with_bad_shells():

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import PartSpec, assemble_model, explicit_run, plate_mesh
+from hollowbody.mesh import plate_mesh
 from hollowbody.model.model import ContactDef, ShellGroup, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model, explicit_run
 
 
 def _self_contact(model, **kw):

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import PartSpec, assemble_model, explicit_run, plate_mesh
 from hollowbody.contact.law import STIFFEN_FRACTION, deep_stiffness, penalty_force, release_depth
+from hollowbody.mesh import plate_mesh
 from hollowbody.model.model import ContactDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model, explicit_run
 
 # --- the force law (penalty.penalty_force, penalty.deep_stiffness) ------------------
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hollowbody.contact.examples import PartSpec, assemble_model, block_mesh, plate_mesh
 from hollowbody.contact.stiffness import bulk_modulus, segment_stiffness
 from hollowbody.contact.surface import (
     SEG_FREE,
@@ -17,7 +16,9 @@ from hollowbody.contact.surface import (
     solid_exterior_faces,
 )
 from hollowbody.errors import UserInputError
+from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import MaterialDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model
 
 
 def _outward(faces, x, inside_point):

@@ -9,7 +9,7 @@ import pytest
 
 from hollowbody.elements.hex8_kinematics import HG_BASE
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh
+from hollowbody.mesh import block_mesh
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -39,7 +39,7 @@ def rot_z(theta):
 
 
 def test_start_call_with_zero_dt_and_velocity():
-    x, conn = block_mesh(2, 2, 2, (4.0, 4.0, 4.0))
+    x, conn = block_mesh((2, 2, 2), (4.0, 4.0, 4.0))
     rt = runtime(x, conn, elastic())
     f = np.zeros_like(x)
     dt, i, neg = rt.add_forces(x.copy(), np.zeros_like(x), 0.0, f)
@@ -53,7 +53,7 @@ def test_start_call_with_zero_dt_and_velocity():
 
 
 def test_rigid_rotation_rotates_prestress_exactly():
-    x0, conn = block_mesh(1, 1, 1, (1.0, 2.0, 1.5))
+    x0, conn = block_mesh((1, 1, 1), (1.0, 2.0, 1.5))
     rt = runtime(x0, conn, elastic(), qm=0.1)
     sig0 = np.array([0.3, -0.1, 0.2, 0.05, -0.02, 0.04]) * 1e-3
     rt.stress[0] = sig0
@@ -78,7 +78,7 @@ def test_rigid_rotation_rotates_prestress_exactly():
 
 
 def test_rubber_stress_follows_rotation():
-    x0, conn = block_mesh(1, 1, 1)
+    x0, conn = block_mesh((1, 1, 1))
     mat, curves = rubber()
     rt = runtime(x0, conn, mat, curves)
     stretch = np.diag([1.2, 1 / math.sqrt(1.2), 1 / math.sqrt(1.2)])
@@ -95,7 +95,7 @@ def test_rubber_stress_follows_rotation():
 
 @pytest.mark.parametrize("ihq", [1, 4])
 def test_pure_hourglass_mode_gives_hourglass_force_but_no_strain(ihq):
-    x0, conn = block_mesh(1, 1, 1, (2.0, 2.0, 2.0))
+    x0, conn = block_mesh((1, 1, 1), (2.0, 2.0, 2.0))
     rt = runtime(x0, conn, elastic(), ihq=ihq, qm=0.1)
     v = np.zeros_like(x0)
     for k in range(4):
@@ -116,7 +116,7 @@ def test_pure_hourglass_mode_gives_hourglass_force_but_no_strain(ihq):
 def test_viscous_hourglass_scaling():
     """a_h = QH rho c V^(2/3) / 4; f_a = -a_h sum_alpha q_alpha gamma_alpha,a."""
     h = 2.0
-    x0, conn = block_mesh(1, 1, 1, (h, h, h))
+    x0, conn = block_mesh((1, 1, 1), (h, h, h))
     mat = elastic()
     rt = runtime(x0, conn, mat, ihq=2, qm=0.1)
     v = np.zeros_like(x0)
@@ -130,7 +130,7 @@ def test_viscous_hourglass_scaling():
 
 
 def test_negative_volume_detected_and_erosion():
-    x0, conn = block_mesh(3, 1, 1, (3.0, 1.0, 1.0))
+    x0, conn = block_mesh((3, 1, 1), (3.0, 1.0, 1.0))
     rt = runtime(x0, conn, elastic())
     x = x0.copy()
     top_of_middle = conn[1, 4:]
@@ -147,7 +147,7 @@ def test_negative_volume_detected_and_erosion():
 
 
 def test_all_eroded_returns_inf():
-    x0, conn = block_mesh(1, 1, 1)
+    x0, conn = block_mesh((1, 1, 1))
     rt = runtime(x0, conn, elastic())
     rt.erode(np.array([0]))
     f = np.zeros_like(x0)
@@ -157,7 +157,7 @@ def test_all_eroded_returns_inf():
 
 def test_bulk_viscosity_time_step_and_pressure():
     h = 1.0
-    x0, conn = block_mesh(1, 1, 1, (h, h, h))
+    x0, conn = block_mesh((1, 1, 1), (h, h, h))
     mat = elastic()
     rt = runtime(x0, conn, mat, q1=1.5, q2=0.06)
     c = rt.wave_speed()[0]

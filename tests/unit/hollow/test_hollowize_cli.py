@@ -9,7 +9,6 @@ import warnings
 import pytest
 
 import hollowbody.cli.main as cli_main
-from hollowbody.hollow.examples import box_deck, write_multipart_deck
 from hollowbody.io.keyword import (
     Material,
     MatPlasticKinematic,
@@ -18,6 +17,7 @@ from hollowbody.io.keyword import (
     read_deck,
     write_deck,
 )
+from hollowbody.testing.decks import box_deck, write_multipart_deck
 
 
 @pytest.fixture(autouse=True)

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import hollowbody.cli.main as cli_main
+from hollowbody.build import build_model
 from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
-from hollowbody.hollow.examples import write_multipart_deck
 from hollowbody.hollow.output import write_converted
 from hollowbody.io.keyword import (
     Contact,
@@ -26,8 +26,8 @@ from hollowbody.io.keyword import (
     TiedContact,
     read_deck,
 )
-from hollowbody.model.builder import build_model
 from hollowbody.model.mass import lumped_node_mass
+from hollowbody.testing.decks import write_multipart_deck
 
 
 def _read(path):
@@ -154,8 +154,8 @@ def test_writer_refuses_to_overwrite_an_input(converted):
 
 
 def test_include_path_folders_follow_the_new_location(tmp_path):
-    from hollowbody.hollow.examples import box_deck
     from hollowbody.io.keyword import Deck, write_deck
+    from hollowbody.testing.decks import box_deck
 
     (tmp_path / "in" / "lib").mkdir(parents=True)
     write_deck(box_deck((60.0, 60.0, 60.0), 10.0), tmp_path / "in" / "lib" / "box.k")

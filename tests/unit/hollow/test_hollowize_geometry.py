@@ -5,14 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.hollow.boundary import boundary_faces, solid_tets
 from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
-from hollowbody.hollow.examples import box_deck, tet_wedge_deck
 from hollowbody.hollow.fill import fill_walls, grid_frame
 from hollowbody.hollow.grid import hollow_box
 from hollowbody.hollow.spatial import TetLocator, TriangleSurface, quads_to_triangles
-from hollowbody.model.builder import build_model
 from hollowbody.scenarios.limb import PID_BONE, PID_MUSCLE, PID_SKIN, limb_deck
+from hollowbody.testing.decks import box_deck, tet_wedge_deck
 
 
 def _areas(conn, x):

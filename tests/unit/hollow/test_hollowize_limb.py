@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
-from hollowbody.model.builder import build_model
 from hollowbody.model.summary import summarize
 from hollowbody.scenarios.limb import (
     PID_BONE,

@@ -7,13 +7,12 @@ import warnings
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.hollow.boundary import solid_mass_properties
 from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
-from hollowbody.hollow.examples import box_deck, tet_wedge_deck
 from hollowbody.hollow.mass_match import TOL_CENTRE, TOL_INERTIA, TOL_MASS
 from hollowbody.hollow.output import write_converted
 from hollowbody.io.keyword import read_deck
-from hollowbody.model.builder import build_model
 from hollowbody.model.mass import (
     hex_volumes,
     point_mass_properties,
@@ -21,6 +20,7 @@ from hollowbody.model.mass import (
     spread_element_mass,
 )
 from hollowbody.scenarios.limb import PID_MUSCLE, limb_deck
+from hollowbody.testing.decks import box_deck, tet_wedge_deck
 
 
 def _solid_props(model, pid):

@@ -7,6 +7,7 @@ import warnings
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     Contact,
@@ -19,7 +20,6 @@ from hollowbody.io.keyword import (
     SectionSolid,
     read_deck_text,
 )
-from hollowbody.model.builder import build_model
 from hollowbody.model.model import MATERIAL_PARAMS
 
 # Two unit cubes (parts 1 and 2, ids not contiguous), one shell (part 3).

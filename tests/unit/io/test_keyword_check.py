@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.cli.main import main
 from hollowbody.io.keyword import read_deck, read_deck_text
-from hollowbody.model.builder import build_model
 from hollowbody.model.summary import solid_lengths, summarize
 
 DECKS = Path(__file__).resolve().parents[2] / "regression" / "decks"

@@ -5,8 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from hollowbody.build import build_model
 from hollowbody.io.keyword import read_deck
-from hollowbody.model.builder import build_model
 from hollowbody.model.summary import summarize
 
 DOC = Path(__file__).resolve().parents[3] / "docs" / "keyword.md"

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.cli.main import main
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import read_deck
-from hollowbody.model.builder import build_model
 
 # A valid one-hexahedron model; cases below append or replace keywords.
 BASE = """\

@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hollowbody.build import build_model
 from hollowbody.io.keyword import (
     Contact,
     ControlTermination,
@@ -26,8 +27,7 @@ from hollowbody.io.keyword import (
     read_deck,
     write_deck,
 )
-from hollowbody.model.builder import build_model
-from hollowbody.model.model import Source
+from hollowbody.source import Source
 
 DECKS = Path(__file__).resolve().parents[2] / "regression" / "decks"
 

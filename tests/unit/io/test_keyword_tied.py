@@ -7,6 +7,7 @@ import warnings
 import numpy as np
 import pytest
 
+from hollowbody.build import build_model
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     RawKeyword,
@@ -15,7 +16,6 @@ from hollowbody.io.keyword import (
     deck_lines,
     read_deck_text,
 )
-from hollowbody.model.builder import build_model
 
 MESH = """\
 *KEYWORD

@@ -3,13 +3,13 @@
 import numpy as np
 import pytest
 
+from hollowbody.mesh import standing_block
 from hollowbody.model.mass import (
     hex_volumes,
     point_mass_properties,
     quad_areas,
     spread_element_mass,
 )
-from hollowbody.scenarios.geometry import block_mesh
 
 UNIT_HEX = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
                      [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=float)
@@ -34,7 +34,7 @@ def test_degenerate_wedge_and_tet_volumes():
 
 
 def test_block_mass_is_rho_v_and_spread_to_distinct_nodes():
-    x, conn = block_mesh((30.0, 15.0, 15.0), 7.5)
+    x, conn = standing_block((30.0, 15.0, 15.0), 7.5)
     rho = 1.0e-6
     m = np.zeros(x.shape[0])
     spread_element_mass(m, conn, rho * hex_volumes(conn, x))

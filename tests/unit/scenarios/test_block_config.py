@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from hollowbody.model.builder import build_model
+from hollowbody.build import build_model
 from hollowbody.scenarios.block import BlockConfig, build_block_deck
 
 

@@ -25,8 +25,8 @@ from hollowbody.io.keyword import (
     SectionSolid,
     SetNodeList,
 )
-from hollowbody.scenarios.geometry import block_mesh
-from hollowbody.scenarios.tissues import tissue
+from hollowbody.mesh import standing_block
+from hollowbody.tissues import tissue
 
 #: First node / element id of the plate.
 PLATE_ID0 = 100_001
@@ -58,7 +58,7 @@ def soft_block_and_rigid_plate(*, tissue_name: str = "fat", size: float = 60.0,
     *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE id 1, tissue slave, plate master.
     """
     t = tissue(tissue_name)
-    xb, cb = block_mesh((size, size, height), mesh)  # centred in x, y; on z = 0
+    xb, cb = standing_block((size, size, height), mesh)  # centred in x, y; on z = 0
     nplate = max(1, int(round(plate_size / plate_elem)))
     xp, qp = _plate(plate_size, nplate, height + 0.5 * plate_t + 0.1)
     bid = np.arange(1, xb.shape[0] + 1)

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import PartSpec, assemble_model, block_mesh, part_contact
+from hollowbody.mesh import block_mesh
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 solid_group = pytest.importorskip("hollowbody.elements.solid_group")
 mass_mod = pytest.importorskip("hollowbody.model.mass")

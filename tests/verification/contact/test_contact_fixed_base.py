@@ -15,9 +15,9 @@ import numpy as np
 from contact_decks import rigid_plate_on_fixed_base
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.contact.runtime import ContactRuntime
 from hollowbody.io.results.history import read_history
-from hollowbody.model.builder import build_model
 
 SPEED = 25.0  # mm/ms (90 km/h)
 

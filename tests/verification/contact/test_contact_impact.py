@@ -11,14 +11,9 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
-from hollowbody.contact.examples import (
-    PartSpec,
-    assemble_model,
-    block_mesh,
-    part_contact,
-    plate_mesh,
-)
+from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import ContactDef, SurfaceRef
+from hollowbody.testing.models import PartSpec, assemble_model, part_contact
 
 _HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
               (0, 4), (1, 5), (2, 6), (3, 7), (0, 6), (1, 7), (2, 4), (3, 5)]

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh, distort
+from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -86,7 +86,7 @@ class Loop:
 
 def test_dilatational_wave_speed_in_confined_column():
     n, h = 200, 1.0
-    x0, conn = block_mesh(1, 1, n, (h, h, n * h))
+    x0, conn = block_mesh((1, 1, n), (h, h, n * h))
     e_mod, nu, rho = 0.2, 0.3, 1e-6
     rt = make(x0, conn, MaterialDef(1, "elastic", rho, {"E": e_mod, "PR": nu}),
               qm=0.1, q1=0.0, q2=0.0)
@@ -127,7 +127,7 @@ def initial_velocity(x):
 
 @pytest.mark.parametrize("ihq", [4, 0])
 def test_elastic_free_vibration_conserves_energy(ihq):
-    x0, conn = block_mesh(3, 3, 6, (6.0, 6.0, 12.0))
+    x0, conn = block_mesh((3, 3, 6), (6.0, 6.0, 12.0))
     x0 = distort(x0, 0.2, seed=2)
     qm = 0.05 if ihq == 4 else 0.0
     rt = make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
@@ -145,7 +145,7 @@ def test_elastic_free_vibration_conserves_energy(ihq):
 
 
 def test_rubber_free_vibration_conserves_energy():
-    x0, conn = block_mesh(2, 2, 4, (6.0, 6.0, 12.0))
+    x0, conn = block_mesh((2, 2, 4), (6.0, 6.0, 12.0))
     mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.0, "SGL": 1.0, "SW": 1.0,
                                              "ST": 1.0, "LCID": 4})
     curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
@@ -167,7 +167,7 @@ def test_rubber_free_vibration_conserves_energy():
 
 
 def test_mu_damping_dissipates():
-    x0, conn = block_mesh(2, 2, 4, (6.0, 6.0, 12.0))
+    x0, conn = block_mesh((2, 2, 4), (6.0, 6.0, 12.0))
     curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
     mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.3, "SGL": 1.0, "SW": 1.0,
                                              "ST": 1.0, "LCID": 4})
@@ -185,7 +185,7 @@ def test_mu_damping_dissipates():
 
 
 def test_viscous_hourglass_energy_non_negative():
-    x0, conn = block_mesh(3, 3, 3, (3.0, 3.0, 3.0))
+    x0, conn = block_mesh((3, 3, 3), (3.0, 3.0, 3.0))
     x0 = distort(x0, 0.2, seed=5)
     rt = make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
               ihq=2, qm=0.1)
@@ -208,7 +208,7 @@ def test_energy_accounting_matches_central_difference_work(case):
     With a constant step the scheme conserves KE(v^{N+1/2}) - dt/2 f^N.v^{N+1/2} + W^N
     exactly; random velocities, bulk viscosity, hourglass control and damping all on.
     """
-    x0, conn = block_mesh(3, 3, 3, (3.0, 3.0, 3.0))
+    x0, conn = block_mesh((3, 3, 3), (3.0, 3.0, 3.0))
     x0 = distort(x0, 0.2, seed=6)
     if case == "rubber":
         mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.2, "G": 1e-4,

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh, boundary_nodes, distort
+from hollowbody.mesh import block_mesh, boundary_nodes, distort
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 E_MOD, NU = 0.2, 0.3
@@ -43,7 +43,7 @@ def split_tets(conn: np.ndarray) -> np.ndarray:
 
 
 def patch(kind: str):
-    x0, conn = block_mesh(3, 3, 3, (3.0, 3.0, 3.0))
+    x0, conn = block_mesh((3, 3, 3), (3.0, 3.0, 3.0))
     x0 = distort(x0, 0.25, seed=11)
     if kind == "wedge":
         conn = split_wedges(conn)

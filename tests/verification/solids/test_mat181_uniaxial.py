@@ -19,8 +19,8 @@ import pytest
 from scipy.optimize import brentq
 
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh
 from hollowbody.materials.rubber_table import uniaxial_stress
+from hollowbody.mesh import block_mesh
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -31,7 +31,7 @@ MUSCLE_MPA = np.array([-11.8, -4.15, -1.90, -0.987, -0.543, -0.299, -0.153, -0.0
 
 def element(km: float = 1.0, sgl: float = 20.0, sw: float = 10.0, st: float = 5.0):
     """One unit-cube element; the curve is given as force vs elongation of a specimen."""
-    x0, conn = block_mesh(1, 1, 1)
+    x0, conn = block_mesh((1, 1, 1))
     curve = Curve(9, MUSCLE_STRAIN * sgl, MUSCLE_MPA * 1e-3 * sw * st)
     mat = MaterialDef(3, "rubber181", 1e-6, {"KM": km, "MU": 0.1, "G": 0.0, "SIGF": 0.0,
                                              "SGL": sgl, "SW": sw, "ST": st, "LCID": 9})

@@ -23,7 +23,7 @@ from hollowbody.io.keyword import (
     SectionSolid,
     SetNodeList,
 )
-from hollowbody.scenarios.geometry import block_mesh
+from hollowbody.mesh import standing_block
 
 
 def plate(size: float, n: int, z: float) -> tuple[np.ndarray, np.ndarray]:
@@ -48,7 +48,7 @@ def cube_and_plate(*, e: float = 0.01, pr: float = 0.3, h: float = 5.0, n: int =
     over the run (prescribed displacement, VAD=2), which inverts elements.
     """
     side = n * h
-    xb, cb = block_mesh((side, side, side), h)
+    xb, cb = standing_block((side, side, side), h)
     xp, qp = plate(1.5 * side, 6, side + 0.5 + gap)
     nb = xb.shape[0]
     bid = np.arange(1, nb + 1)
@@ -90,7 +90,7 @@ def crushed_column(n: int = 3, h: float = 5.0, crush: float = 30.0, end: float =
     """A column of n hexahedra (edge h), bottom nodes fixed, top nodes driven down by
     ``crush`` mm over ``end`` ms (every node of the top face prescribed, so the top
     element's volume is exactly h^2 (h - u) until the column's top passes the next layer)."""
-    xb, cb = block_mesh((h, h, n * h), h)
+    xb, cb = standing_block((h, h, n * h), h)
     ids = np.arange(1, xb.shape[0] + 1)
     deck = Deck()
     deck.title = "crushed column"

@@ -15,9 +15,9 @@ import pytest
 from solver_decks import crushed_strip, cube_and_plate
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.elements.shell_group import ShellGroupRuntime
 from hollowbody.io.results.history import read_history
-from hollowbody.model.builder import build_model
 from hollowbody.model.model import HourglassDef, MaterialDef, SectionDef, ShellGroup
 from hollowbody.solver.mass_scaling import MassScaling
 

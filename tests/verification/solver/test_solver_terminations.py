@@ -14,8 +14,8 @@ import pytest
 from solver_decks import crushed_column, crushed_strip, cube_and_plate
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.io.results.history import read_history
-from hollowbody.model.builder import build_model
 
 
 def _run(deck, tmp_path, **kw):

@@ -28,10 +28,10 @@ import pytest
 from tied_decks import E_BAR, RHO_BAR, SIDE, rotating_plate, t_junction, two_bars, two_blocks
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import BoundarySpcSet, SetNodeList, TiedContact
 from hollowbody.io.results.history import read_history
-from hollowbody.model.builder import build_model
 from hollowbody.model.mass import lumped_node_mass
 from hollowbody.solver.outputs import RunOutputs
 from hollowbody.solver.setup import assemble

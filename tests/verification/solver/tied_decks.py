@@ -26,7 +26,7 @@ from hollowbody.io.keyword import (
     SetSegment,
     TiedContact,
 )
-from hollowbody.scenarios.geometry import block_mesh
+from hollowbody.mesh import standing_block
 
 #: bar material: E (GPa), density (kg/mm^3); bar wave speed c = sqrt(E / rho) mm/ms
 E_BAR, RHO_BAR = 0.1, 1.0e-6
@@ -50,8 +50,8 @@ def two_bars(*, length: float = 50.0, n_fine: int = 4, n_coarse: int = 3, v0: fl
     Returns the deck and a dict of node ids per bar and the slave ids.
     """
     h1, h2 = SIDE / n_fine, SIDE / n_coarse
-    x1, c1 = block_mesh((length, SIDE, SIDE), h1)
-    x2, c2 = block_mesh((length, SIDE, SIDE), h2)
+    x1, c1 = standing_block((length, SIDE, SIDE), h1)
+    x2, c2 = standing_block((length, SIDE, SIDE), h2)
     x1 = x1 + np.array([0.5 * length, 0.0, 0.0])
     x2 = x2 + np.array([1.5 * length + gap, shift[0], shift[1]])
     id1 = np.arange(1, x1.shape[0] + 1)
@@ -178,8 +178,8 @@ def two_blocks(*, n_fine: int = 4, n_coarse: int = 2, side: float = 10.0,
     independently (part 1: n_fine^3 elements, part 2: n_coarse^3) and tied there:
     part 1's face nodes (node set 1) to part 2 (MSTYP 3), or to the segment set 2 of
     part 2's face when ``master="segments"``. For the constant-stress patch test."""
-    x1, c1 = block_mesh((side, side, side), side / n_fine)
-    x2, c2 = block_mesh((side, side, side), side / n_coarse)
+    x1, c1 = standing_block((side, side, side), side / n_fine)
+    x2, c2 = standing_block((side, side, side), side / n_coarse)
     x1 = x1 + np.array([0.5 * side, 0.5 * side, 0.0])
     x2 = x2 + np.array([1.5 * side, 0.5 * side, 0.0])
     id1 = np.arange(1, x1.shape[0] + 1)

@@ -25,7 +25,7 @@ from hollowbody.io.keyword.cards import (
     parse_card,
     parse_int,
 )
-from hollowbody.model.model import Source
+from hollowbody.source import Source
 
 # ---------------------------------------------------------------------------
 # Blocks and card cursors (reader side)

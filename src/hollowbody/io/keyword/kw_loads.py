@@ -58,7 +58,9 @@ class BoundarySpcSet(_Spc):
 
 
 @dataclass(kw_only=True)
-class _Motion(SimpleKeyword):
+class PrescribedMotionKeyword(SimpleKeyword):
+    """Fields shared by the *BOUNDARY_PRESCRIBED_MOTION_NODE / _SET / _RIGID cards."""
+
     dof: int = 0
     vad: int = 0
     lcid: int = 0
@@ -75,7 +77,7 @@ class _Motion(SimpleKeyword):
 
 @register
 @dataclass(kw_only=True)
-class PrescribedMotionNode(_Motion):
+class PrescribedMotionNode(PrescribedMotionKeyword):
     """*BOUNDARY_PRESCRIBED_MOTION_NODE: NID DOF VAD LCID SF VID DEATH BIRTH."""
 
     nid: int = 0
@@ -86,7 +88,7 @@ class PrescribedMotionNode(_Motion):
 
 @register
 @dataclass(kw_only=True)
-class PrescribedMotionSet(_Motion):
+class PrescribedMotionSet(PrescribedMotionKeyword):
     """*BOUNDARY_PRESCRIBED_MOTION_SET: NSID DOF VAD LCID SF VID DEATH BIRTH."""
 
     nsid: int = 0
@@ -97,7 +99,7 @@ class PrescribedMotionSet(_Motion):
 
 @register
 @dataclass(kw_only=True)
-class PrescribedMotionRigid(_Motion):
+class PrescribedMotionRigid(PrescribedMotionKeyword):
     """*BOUNDARY_PRESCRIBED_MOTION_RIGID: PID DOF VAD LCID SF VID DEATH BIRTH."""
 
     pid: int = 0

@@ -11,7 +11,7 @@ with ``strict=True`` the first one raises :class:`DeckError`.
 
 Only the syntax of each keyword is checked here (numbers, cards, increasing
 curve abscissae, include files); references between keywords are checked by
-:func:`hollowbody.model.builder.build_model`.
+:func:`hollowbody.build.build_model`.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from pathlib import Path
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword.base import Block, RawKeyword, resolve
 from hollowbody.io.keyword.deck import Deck, Include
-from hollowbody.model.model import Source
+from hollowbody.source import Source
 
 #: Keywords that are kept as text but are not "unsupported" (no warning).
 IGNORED = ("COMMENT", "INCLUDE_PATH", "INCLUDE_PATH_RELATIVE")

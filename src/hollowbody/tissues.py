@@ -1,4 +1,5 @@
-"""Default soft-tissue properties of the block test (DESIGN.md section 5).
+"""Default soft-tissue properties (DESIGN.md section 5): the block test, the limb and
+hollowize use them, so they sit below all three.
 
 The paper's solid-tissue curves (its Fig. A1, A2) are not published as
 numbers. Our defaults are a one-term Ogden law fitted to representative

@@ -1,9 +1,10 @@
-"""CFC filter of force histories (hollowbody.report.force_displacement)."""
+"""Force-displacement curves: CFC filtering of force histories, peak force, smoothing."""
 
 import numpy as np
 import pytest
 
-from hollowbody.report.force_displacement import ForceDisplacement, cfc_filter
+from hollowbody.curves.cfc import cfc_filter
+from hollowbody.curves.force_displacement import ForceDisplacement, smoothed
 
 
 def test_cfc600_passes_slow_signals_and_removes_fast_ones():
@@ -24,3 +25,19 @@ def test_peak_force_uses_filtered_curve():
     c = ForceDisplacement(t, t, f_spike)
     assert c.peak_force_raw == 50.0
     assert c.peak_force == pytest.approx(10.0, rel=0.05)
+
+
+def test_cfc_filter_keeps_slow_and_removes_fast_signals():
+    t = np.linspace(0.0, 20.0, 1001)  # ms, 50 kHz
+    slow = np.sin(2 * np.pi * 0.05 * t)  # 50 Hz
+    fast = 0.5 * np.sin(2 * np.pi * 5.0 * t)  # 5 kHz
+    out = cfc_filter(t, slow + fast, 180.0)
+    core = slice(100, -100)
+    assert np.max(np.abs(out[core] - slow[core])) < 0.03
+
+
+def test_smoothed_drops_repeated_times():
+    c = ForceDisplacement(np.array([0.0, 0.1, 0.1, 0.2, 0.3]), np.arange(5.0),
+                          np.ones(5))
+    s = smoothed(c, None)
+    assert np.all(np.diff(s.time) > 0)

@@ -30,9 +30,9 @@ from hollowbody.io.keyword import (
     SetNodeList,
     write_deck,
 )
+from hollowbody.mesh import standing_block
 from hollowbody.model.mass import hex_volumes
-from hollowbody.scenarios.geometry import block_mesh
-from hollowbody.scenarios.tissues import tissue
+from hollowbody.tissues import tissue
 
 
 def _tissue_props(deck: Deck, pid: int, name: str = "muscle", mid: int = 1, secid: int = 1,
@@ -49,7 +49,7 @@ def box_deck(size: tuple[float, float, float] = (90.0, 60.0, 60.0), h: float = 1
              tissue_name: str = "muscle", origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
              ) -> Deck:
     """A box of hexahedra of edge ``h`` (part 1), x, y centred on ``origin``, z from it."""
-    x, c = block_mesh(size, h)
+    x, c = standing_block(size, h)
     x = x + np.asarray(origin, dtype=float)
     deck = Deck()
     deck.title = f"box {size[0]:g} x {size[1]:g} x {size[2]:g} mm of {tissue_name}"
@@ -64,7 +64,7 @@ def tet_wedge_deck(size: tuple[float, float, float] = (90.0, 60.0, 60.0), h: flo
                    ) -> Deck:
     """A box split at mid-height: tetrahedra above (6 per cube), wedges below (2 per cube),
     conforming, one MAT_181 part (fat)."""
-    x, c = block_mesh(size, h)
+    x, c = standing_block(size, h)
     top = x[c][:, :, 2].mean(axis=1) > 0.5 * size[2]
     tets = c[top][:, HEX_TETS].reshape(-1, 4)
     cubes = c[~top]
@@ -90,8 +90,8 @@ def tet_wedge_deck(size: tuple[float, float, float] = (90.0, 60.0, 60.0), h: flo
 def write_multipart_deck(folder: str | Path, h: float = 10.0) -> Path:
     """Write the multi-part deck with includes into ``folder``; returns the main file."""
     folder = Path(folder)
-    xm, cm = block_mesh((60.0, 60.0, 60.0), h)
-    xo, co = block_mesh((60.0, 60.0, 30.0), h)
+    xm, cm = standing_block((60.0, 60.0, 60.0), h)
+    xo, co = standing_block((60.0, 60.0, 30.0), h)
     xm = xm + np.array([0.0, 0.0, 30.0])  # muscle on top of the organ, interface z = 30
     muscle = Deck()
     ids_m = np.arange(1, xm.shape[0] + 1)

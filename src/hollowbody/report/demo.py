@@ -48,9 +48,14 @@ from hollowbody.calibrate.driver import CalibrationSettings, calibrate
 from hollowbody.calibrate.fitness import FitnessSettings
 from hollowbody.calibrate.ga import GASettings
 from hollowbody.calibrate.progress import CalibrationProgress
+from hollowbody.calibrate.runner import make_runner
 from hollowbody.calibrate.simulate import BlockSimulator, elements_per_edge
 from hollowbody.calibrate.space import make_space
 from hollowbody.calibrate.study import run_study
+from hollowbody.calibrate.wall import WALL_UNITS, effective_wall
+from hollowbody.report.calibration import write_report
+from hollowbody.report.index import write_index
+from hollowbody.report.study import study_markdown, write_study_report
 
 
 @dataclass(frozen=True)
@@ -108,8 +113,6 @@ def index_markdown(out: Path, budget: DemoBudget, sim_description: dict, cal_dat
                    study_md: str, table1_md: str, timings: dict[str, float],
                    runner_description: str) -> str:
     """The demo's index page (Markdown with relative links)."""
-    from hollowbody.report.calibration import WALL_UNITS, effective_wall
-
     wall = effective_wall(cal_data)
     best = ("no candidate ended normally" if wall is None else
             ", ".join(f"{k} = {v:g} {WALL_UNITS[k]}" for k, v in wall.items()))
@@ -160,11 +163,6 @@ def run_demo(out_dir: str | Path, budget: DemoBudget | None = None, simulator: A
     budget's mesh and end time; the default runner a LocalCluster of
     ``budget.workers`` processes (closed at the end).
     """
-    from hollowbody.calibrate.runner import make_runner
-    from hollowbody.report.calibration import effective_wall, write_report
-    from hollowbody.report.index import write_index
-    from hollowbody.report.study import study_markdown, write_study_report
-
     b = budget or BUDGETS["default"]
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

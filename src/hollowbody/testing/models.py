@@ -1,6 +1,9 @@
-"""Small structured meshes and models for contact tests, benchmarks and docs.
+"""Small Models built directly (no deck) for contact and solver tests, benchmarks and docs.
 
-Nothing here is used by the solver. Units as everywhere: mm, kg, GPa.
+:func:`assemble_model` makes a Model of parts given as node arrays and
+connectivities (see :mod:`hollowbody.mesh` for structured ones);
+:func:`explicit_run` integrates point masses under contact forces only. Nothing
+here is used by the solver. Units as everywhere: mm, ms, kg, kN, GPa.
 """
 
 from __future__ import annotations
@@ -20,42 +23,6 @@ from hollowbody.model.model import (
     SolidGroup,
     SurfaceRef,
 )
-
-
-def block_mesh(n: tuple[int, int, int] = (2, 2, 2), size: tuple[float, float, float] = (1, 1, 1),
-               origin: tuple[float, float, float] = (0, 0, 0)) -> tuple[np.ndarray, np.ndarray]:
-    """Structured hexahedral block: x (m, 3) mm, conn (e, 8) int32 (LS-DYNA order)."""
-    nx, ny, nz = n
-    ax = [np.linspace(origin[d], origin[d] + size[d], n[d] + 1) for d in range(3)]
-    gx, gy, gz = np.meshgrid(*ax, indexing="ij")
-    x = np.column_stack([gx.ravel(), gy.ravel(), gz.ravel()])
-
-    def idx(i, j, k):
-        return (i * (ny + 1) + j) * (nz + 1) + k
-
-    i, j, k = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
-    i, j, k = i.ravel(), j.ravel(), k.ravel()
-    conn = np.column_stack([idx(i, j, k), idx(i + 1, j, k), idx(i + 1, j + 1, k),
-                            idx(i, j + 1, k), idx(i, j, k + 1), idx(i + 1, j, k + 1),
-                            idx(i + 1, j + 1, k + 1), idx(i, j + 1, k + 1)])
-    return x, conn.astype(np.int32)
-
-
-def plate_mesh(n: tuple[int, int] = (10, 10), size: tuple[float, float] = (10, 10),
-               origin: tuple[float, float, float] = (0, 0, 0)) -> tuple[np.ndarray, np.ndarray]:
-    """Structured quad plate in the plane z = origin[2], normal +z: x (m, 3), conn (e, 4)."""
-    nx, ny = n
-    gx, gy = np.meshgrid(np.linspace(origin[0], origin[0] + size[0], nx + 1),
-                         np.linspace(origin[1], origin[1] + size[1], ny + 1), indexing="ij")
-    x = np.column_stack([gx.ravel(), gy.ravel(), np.full(gx.size, float(origin[2]))])
-    i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-    i, j = i.ravel(), j.ravel()
-
-    def idx(a, b):
-        return a * (ny + 1) + b
-
-    conn = np.column_stack([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)])
-    return x, conn.astype(np.int32)
 
 
 @dataclass

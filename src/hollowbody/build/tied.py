@@ -1,6 +1,6 @@
 """Tied contacts of a deck -> :class:`~hollowbody.model.model.TiedContactDef`.
 
-Called by :func:`hollowbody.model.builder.build_model` once the sets are
+Called by :func:`hollowbody.build.build_model` once the sets are
 resolved. Sides: slave SSTYP 0 (segment set: its nodes), 2 (part set), 3
 (part), 4 (node set); master MSTYP 0 (segment set), 2 (part set), 3 (part).
 Anything else, contact boxes included, is a :class:`DeckError` at the

@@ -14,6 +14,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from hollowbody.build.tied import tied_contacts
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     BoundarySpcNode,
@@ -42,6 +43,7 @@ from hollowbody.io.keyword import (
     Nodes,
     Part,
     PartInertia,
+    PrescribedMotionKeyword,
     PrescribedMotionRigid,
     PrescribedMotionSet,
     SectionShell,
@@ -55,9 +57,7 @@ from hollowbody.io.keyword import (
     SolidElements,
     TiedContact,
 )
-from hollowbody.io.keyword.kw_loads import _Motion
 from hollowbody.model import model as m
-from hollowbody.model.tied_build import tied_contacts
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
 OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum")
@@ -431,7 +431,7 @@ def _spcs(b: _Builder, model: m.Model) -> list[m.NodalSPC]:
 
 def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
     out = []
-    for it in b.of(_Motion):
+    for it in b.of(PrescribedMotionKeyword):
         if it.dof not in _MOTION_DOFS:
             raise _err(it, f"DOF={it.dof} is not supported (1, 2, 3 translations; 5, 6, 7 "
                        "rotations)")

@@ -1,0 +1,23 @@
+"""The hollow walls a calibration found: its best parameters with the block's defaults.
+
+A calibration varies some wall parameters (:mod:`hollowbody.calibrate.space`)
+and may fix others; :func:`effective_wall` gives the complete wall (every
+parameter of :data:`WALL_UNITS` that has a value), as the study re-runs it and
+the reports print it.
+"""
+
+from __future__ import annotations
+
+#: Hollow wall values used when a parameter is neither calibrated nor fixed (the block's).
+WALL_DEFAULTS = {"etan": 0.0, "thickness": 1.5}
+WALL_UNITS = {"E": "MPa", "yield": "MPa", "etan": "MPa", "thickness": "mm"}
+
+
+def effective_wall(data: dict) -> dict[str, float] | None:
+    """Best wall parameters of a calibration with fixed/default values filled in."""
+    best = data.get("best_parameters")
+    if best is None:
+        return None
+    fixed = data.get("simulator", {}).get("fixed", {}) or {}
+    values = {**WALL_DEFAULTS, **fixed, **best}
+    return {k: float(values[k]) for k in WALL_UNITS if k in values}
