@@ -25,7 +25,7 @@ from solver_decks import crushed_column, cube_and_plate
 from hollowbody.api import run_model
 from hollowbody.cli.main import main as cli_main
 from hollowbody.io.keyword.writer import write_deck
-from hollowbody.model.builder import build_model
+from hollowbody.build import build_model
 from hollowbody.solver import explicit
 from hollowbody.solver.restart import RestartError, dump_files, read_dump
 
@@ -112,7 +112,7 @@ _KILLER = textwrap.dedent("""
     numba.set_num_threads(1)
     from solver_decks import cube_and_plate
     from hollowbody.api import run_model
-    from hollowbody.model.builder import build_model
+    from hollowbody.build import build_model
     from hollowbody.solver import explicit
     original = explicit.step
     def step(model, plan, state, dt):
