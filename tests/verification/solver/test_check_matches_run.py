@@ -14,10 +14,10 @@ from pathlib import Path
 import pytest
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.cli.main import main as cli_main
 from hollowbody.io.keyword import read_deck
 from hollowbody.io.keyword.writer import write_deck
-from hollowbody.build import build_model
 from hollowbody.scenarios.block import BlockConfig, build_block_deck
 
 DECKS = Path(__file__).resolve().parents[2] / "regression" / "decks"

@@ -23,9 +23,9 @@ import pytest
 from solver_decks import crushed_column, cube_and_plate
 
 from hollowbody.api import run_model
+from hollowbody.build import build_model
 from hollowbody.cli.main import main as cli_main
 from hollowbody.io.keyword.writer import write_deck
-from hollowbody.build import build_model
 from hollowbody.solver import explicit
 from hollowbody.solver.restart import RestartError, dump_files, read_dump
 
