@@ -1,17 +1,13 @@
-"""Tied-contact kernels (hollowbody.solver.tied, tied_search) on hand-made arrays."""
+"""Tied-contact kernels (hollowbody.contact.tied) on hand-made arrays."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from hollowbody.solver.tied import TieSet
-from hollowbody.solver.tied_search import (
-    closest_point,
-    closest_segments,
-    local_offsets,
-    shape_weights,
-)
+from hollowbody.contact.geometry import closest_point, shape_weights
+from hollowbody.contact.tied import TieSet
+from hollowbody.contact.tied.search import closest_segments, local_offsets
 
 # a warped quadrilateral (corner 3 lifted) and a triangle (N4 == N3), nodes 0-6
 X0 = np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [11.0, 9.0, 0.0], [-1.0, 10.0, 2.0],
