@@ -35,6 +35,8 @@ allocated here, none per cycle (the bucket sort, every
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
 from numba import get_num_threads
 
@@ -94,7 +96,21 @@ MAX_EVENTS = 20
 
 
 class _Pass:
-    """Arrays of one node-vs-segment pass (local numbering), see contact_pass."""
+    """Arrays of one node-vs-segment pass (local numbering), see contact_pass.
+
+    ``STATE_FIELDS``: what a restart must save and put back for the run to continue
+    bit for bit: the far and near lists and their segment lists (rebound with a
+    new length at every sort / filter: put back by assignment, not in place; fact
+    and act are views of work buffers until the next filter), the filter's stamps,
+    the per-node contact history (last segment, weights, force, gap, normal,
+    friction force, damping force, entry flag, pass-through segment) and which
+    segments are alive (erosion). The segment frames and boxes are recomputed
+    before they are read (every cycle / filter) and are not state.
+    """
+
+    STATE_FIELDS: ClassVar[tuple[str, ...]] = (
+        "ptr", "cand", "sact", "nptr", "ncand", "fact", "act", "_mark",
+        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "oentry", "othru", "seg_alive")
 
     def __init__(self, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth,
                  s_two, sign: float) -> None:
@@ -171,7 +187,22 @@ class ContactRuntime:
     springs + friction), ``n_active`` nodes in contact, ``time`` ms (sum of
     the steps passed), ``n_pass_through`` nodes pushed through a surface so
     far (events; ``pass_through_nodes`` the distinct node ids).
+
+    ``STATE_FIELDS`` names what changes in time (a restart saves and puts back
+    these and each pass's ``passes[i].STATE_FIELDS``): the results above, the
+    pass-through records (a set and lists: saved as copies, put back by
+    assignment), the reference positions of the last sort and filter and their
+    margins, the previous positions, forces and node weights (contact work and
+    the stiffened zone), the sort and filter counters and flags, and the
+    critical step seen. The gathered coordinates and force work arrays are
+    rewritten every cycle before they are read and are not state.
     """
+
+    STATE_FIELDS: ClassVar[tuple[str, ...]] = (
+        "time", "energy", "n_active", "slave_force", "master_force",
+        "n_pass_through", "pass_through_nodes", "events", "_pending",
+        "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev", "_wprev",
+        "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc")
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
                  rigid_node: np.ndarray, fixed_node: np.ndarray | None = None,
