@@ -68,7 +68,7 @@ class TieSet:
     # -- set-up ------------------------------------------------------------------
     def transfer_mass(self, node_mass: np.ndarray, rot_inertia: np.ndarray) -> None:
         """Move slave masses (n,) kg and, where rotations are coupled, rotational
-        inertias (n,) kg mm^2 to the master nodes, in place (see module docstring)."""
+        inertias (n,) kg mm^2 to the master nodes, in place (see :mod:`hollowbody.contact.tied`)."""
         s, seg, w = self.node, self.seg, self.w
         if rot_inertia.shape[0] == node_mass.shape[0]:
             has_rot = (rot_inertia > 0.0) | self.rigid_node[: rot_inertia.shape[0]]
