@@ -51,15 +51,17 @@ def _names(ids: list[str]) -> str:
 
 
 def clean_surface(surf: Surface, model: Model, node_mass: np.ndarray, rigid_node: np.ndarray,
-                  thickness_override: float, label: str) -> tuple[Surface, list[str]]:
+                  thickness_override: float, label: str, x0: np.ndarray | None = None
+                  ) -> tuple[Surface, list[str]]:
     """Drop degenerate segments and massless slave nodes (see module docstring).
 
     surf: one side; node_mass (n,) kg; rigid_node (n,) bool; thickness_override
     mm (SST / MST, > 0 replaces shell thicknesses); label names the side in
     messages ("contact 3 slave side"). Returns the cleaned surface (the same
     object when nothing is dropped) and the warning messages (empty or one).
+    x0: (n, 3) mm initial coordinates (None: ``model.node_x0``).
     """
-    x0 = model.node_x0
+    x0 = model.node_x0 if x0 is None else x0
     seg = surf.seg
     reasons: list[str] = []
     keep = np.ones(surf.n_segments, bool)

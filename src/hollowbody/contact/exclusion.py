@@ -19,9 +19,10 @@ left out by the broad phase.
 
 Tied contacts join the mesh too: the wall edges of a hollowized part are not
 merged with its boundary shells but tied to them (*CONTACT_TIED_...), so a
-tied node is joined (path length 0, :func:`tie_links`) to the corners of the
-master segments it lies on, and junctions across a tie are left out like
-junctions of shared nodes.
+tied node is joined (path length 0, the links of
+:func:`hollowbody.contact.tied.links.tie_links`) to the corners of the master
+segments it lies on, and junctions across a tie are left out like junctions of
+shared nodes.
 """
 
 from __future__ import annotations
@@ -64,7 +65,8 @@ def edge_graph(segs: list[np.ndarray], x: np.ndarray, links: np.ndarray | None =
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """CSR graph of segment edges: ptr (L + 1,), nbr, length (mm) over rows of x.
 
-    links: optional (k, 2) row pairs joined with length 0 (ties, :func:`tie_links`).
+    links: optional (k, 2) row pairs joined with length 0 (ties, see
+    :mod:`hollowbody.contact.tied.links`).
     """
     e = []
     for seg in segs:
@@ -98,33 +100,6 @@ def edge_graph(segs: list[np.ndarray], x: np.ndarray, links: np.ndarray | None =
     ptr = np.cumsum(ptr)
     length = np.where(zb, 0.0, np.linalg.norm(x[both[:, 1]] - x[both[:, 0]], axis=1))
     return ptr, both[:, 1], length
-
-
-def tie_links(x0: np.ndarray, nodes: np.ndarray, seg: np.ndarray, tol: float) -> np.ndarray:
-    """Zero-length graph links of tied nodes to the master segments they lie on.
-
-    x0 (L, 3) mm; nodes (m,) rows of the tied (slave) nodes; seg (S, 4) rows of
-    the tie's master segments; tol mm: a node closer than tol to a segment
-    (projection inside) lies on it. Returns (k, 2) int64 pairs (node, corner).
-    """
-    from hollowbody.contact.bucket import bucket_sort
-
-    nodes = np.ascontiguousarray(nodes, dtype=np.int32)
-    seg = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 4)
-    if nodes.size == 0 or seg.shape[0] == 0:
-        return np.zeros((0, 2), np.int64)
-    ptr, cand = bucket_sort(x0, nodes, seg, np.full(seg.shape[0], tol))
-    reach = np.zeros(cand.shape[0])
-    # two-sided, contact distance tol (node "thickness" 2 tol, segments 0)
-    initial_contacts(x0, nodes, np.full(nodes.shape[0], 2.0 * tol), seg,
-                     np.zeros(seg.shape[0]), np.zeros(seg.shape[0]),
-                     np.ones(seg.shape[0], np.int8), ptr, cand, reach)
-    hit = np.nonzero(reach > 0.0)[0]
-    if hit.size == 0:
-        return np.zeros((0, 2), np.int64)
-    node_of = np.repeat(np.arange(nodes.shape[0]), np.diff(ptr))
-    pairs = np.column_stack([np.repeat(nodes[node_of[hit]], 4), seg[cand[hit]].ravel()])
-    return np.unique(pairs.astype(np.int64), axis=0)
 
 
 def _within(src: int, radius: float, ptr, nbr, length) -> dict[int, float]:

@@ -35,6 +35,8 @@ allocated here, none per cycle (the bucket sort, every
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
 from numba import get_num_threads
 
@@ -45,7 +47,6 @@ from hollowbody.contact.exclusion import (
     junction_exclusions,
     merge_csr,
     ring_exclusions,
-    tie_links,
 )
 from hollowbody.contact.frames import segment_frames, segment_frames_of
 from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
@@ -71,6 +72,7 @@ from hollowbody.contact.surface import (
     build_surface,
     model_surface,
 )
+from hollowbody.contact.tied.links import tied_links
 from hollowbody.errors import UserInputError
 from hollowbody.model.model import ContactDef, Model
 
@@ -94,7 +96,21 @@ MAX_EVENTS = 20
 
 
 class _Pass:
-    """Arrays of one node-vs-segment pass (local numbering), see contact_pass."""
+    """Arrays of one node-vs-segment pass (local numbering), see contact_pass.
+
+    ``STATE_FIELDS``: what a restart must save and put back for the run to continue
+    bit for bit: the far and near lists and their segment lists (rebound with a
+    new length at every sort / filter: put back by assignment, not in place; fact
+    and act are views of work buffers until the next filter), the filter's stamps,
+    the per-node contact history (last segment, weights, force, gap, normal,
+    friction force, damping force, entry flag, pass-through segment) and which
+    segments are alive (erosion). The segment frames and boxes are recomputed
+    before they are read (every cycle / filter) and are not state.
+    """
+
+    STATE_FIELDS: ClassVar[tuple[str, ...]] = (
+        "ptr", "cand", "sact", "nptr", "ncand", "fact", "act", "_mark",
+        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "oentry", "othru", "seg_alive")
 
     def __init__(self, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth,
                  s_two, sign: float) -> None:
@@ -162,7 +178,8 @@ class ContactRuntime:
     rigid body's mass divided by its node count on its nodes (None: rigid nodes
     are left out of the stiffened zone's stability bound). A pair in which every
     participant is rigid or fixed (a rigid impactor on a fixed base) always gets
-    the stiffened zone, bounded by the rigid body's mass.
+    the stiffened zone, bounded by the rigid body's mass. x0: (n, 3) mm initial
+    coordinates of the run (the tied contacts' ``node_x0``; None: the model's).
 
     After each :meth:`add_forces`: ``slave_force`` (3,) kN resultant contact
     force on the slave side, ``master_force`` = -slave_force (both zero for
@@ -170,11 +187,27 @@ class ContactRuntime:
     springs + friction), ``n_active`` nodes in contact, ``time`` ms (sum of
     the steps passed), ``n_pass_through`` nodes pushed through a surface so
     far (events; ``pass_through_nodes`` the distinct node ids).
+
+    ``STATE_FIELDS`` names what changes in time (a restart saves and puts back
+    these and each pass's ``passes[i].STATE_FIELDS``): the results above, the
+    pass-through records (a set and lists: saved as copies, put back by
+    assignment), the reference positions of the last sort and filter and their
+    margins, the previous positions, forces and node weights (contact work and
+    the stiffened zone), the sort and filter counters and flags, and the
+    critical step seen. The gathered coordinates and force work arrays are
+    rewritten every cycle before they are read and are not state.
     """
+
+    STATE_FIELDS: ClassVar[tuple[str, ...]] = (
+        "time", "energy", "n_active", "slave_force", "master_force",
+        "n_pass_through", "pass_through_nodes", "events", "_pending",
+        "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev", "_wprev",
+        "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc")
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
                  rigid_node: np.ndarray, fixed_node: np.ndarray | None = None,
-                 rigid_share: np.ndarray | None = None) -> None:
+                 rigid_share: np.ndarray | None = None, x0: np.ndarray | None = None
+                 ) -> None:
         self.cid = cdef.cid
         self.kind = cdef.kind
         self.cdef = cdef
@@ -184,6 +217,7 @@ class ContactRuntime:
         self.parallel_min_nodes = PARALLEL_MIN_NODES
         self.sort_interval = max(1, int(model.controls.contact_sort_interval or 100))
         n = model.n_nodes
+        x0 = np.asarray(model.node_x0 if x0 is None else x0, dtype=np.float64)
         node_mass = np.asarray(node_mass, dtype=np.float64)
         rigid_node = np.asarray(rigid_node, dtype=bool)
         self._params = np.array([model.controls.slsfac, 1.0 if cdef.soft >= 1 else 0.0,
@@ -195,19 +229,19 @@ class ContactRuntime:
 
         def msurf(t: float) -> Surface:
             if t not in ms_cache:
-                ms_cache[t] = model_surface(model, t)
+                ms_cache[t] = model_surface(model, t, x0)
             return ms_cache[t]
 
         slave = build_surface(cdef.slave, model, cdef.sst,
                               msurf(cdef.sst) if cdef.slave.kind in ("nodes", "segments")
-                              else None)
+                              else None, x0=x0)
         master = None
         if cdef.kind in ("nodes_to_surface", "surface_to_surface"):
             if cdef.master is None:
                 raise UserInputError(f"contact {cdef.cid}: {cdef.kind} needs a master side")
             master = build_surface(cdef.master, model, cdef.mst,
                                    msurf(cdef.mst) if cdef.master.kind in ("nodes", "segments")
-                                   else None)
+                                   else None, x0=x0)
             if master.n_segments == 0:
                 raise UserInputError(f"contact {cdef.cid}: master side has no segments")
         elif cdef.kind != "single_surface":
@@ -216,11 +250,11 @@ class ContactRuntime:
         self.warnings: list[str] = []
         side = "surface" if master is None else "slave side"
         slave, w = clean_surface(slave, model, node_mass, rigid_node, cdef.sst,
-                                 f"contact {cdef.cid} {side}")
+                                 f"contact {cdef.cid} {side}", x0)
         self.warnings += w
         if master is not None:
             master, w = clean_surface(master, model, node_mass, rigid_node, cdef.mst,
-                                      f"contact {cdef.cid} master side")
+                                      f"contact {cdef.cid} master side", x0)
             self.warnings += w
             if master.n_segments == 0:
                 raise UserInputError(f"contact {cdef.cid}: master side has no valid segments")
@@ -228,12 +262,12 @@ class ContactRuntime:
         self.master_surface = master
 
         def side_arrays(surf: Surface, t_override: float):
-            k_seg, depth = segment_stiffness(surf, model)
+            k_seg, depth = segment_stiffness(surf, model, x0)
             if surf.n_segments:
                 k_node = node_stiffness(surf.nodes, surf.seg, k_seg, n)
             else:  # node set: stiffness of the model's segments through the node
                 ms = msurf(t_override)
-                k_ms, _ = segment_stiffness(ms, model)
+                k_ms, _ = segment_stiffness(ms, model, x0)
                 k_node = node_stiffness(surf.nodes, ms.seg, k_ms, n)
             # release depth = penmax * depth (solids V / A, shells sqrt(A))
             return k_seg, depth, k_node
@@ -278,8 +312,8 @@ class ContactRuntime:
         self.set_penmax(PENMAX, exclusions=False)
         #: initial contacts between surfaces not joined by the mesh (they push apart)
         self.n_initial_penetrations = 0
-        self._x0 = model.node_x0[self.nodes]
-        self._links = _tied_links(model, loc, self._x0)
+        self._x0 = x0[self.nodes]
+        self._links = tied_links(model, loc, self._x0, x0)
         self._exclude_junctions(self._x0)
 
         nl = self.nodes.shape[0]
@@ -529,31 +563,3 @@ def _listed(cand: np.ndarray, nseg: int) -> np.ndarray:
     seen = np.zeros(nseg, dtype=bool)
     seen[cand] = True
     return np.nonzero(seen)[0].astype(np.int32)
-
-
-def _tied_links(model: Model, loc: np.ndarray, x0: np.ndarray) -> np.ndarray:
-    """Zero-length exclusion-graph links (local rows) of the model's tied contacts.
-
-    Each tied (slave) node of a *CONTACT_TIED_... that is also a node of this
-    contact is joined to the corners of the tie's master segments it lies on
-    (within half the summed thicknesses, at least 0.1 of the segments' median
-    size), see :func:`hollowbody.contact.exclusion.tie_links`.
-    """
-    out = [np.zeros((0, 2), np.int64)]
-    for tie in getattr(model, "tied_contacts", None) or []:
-        try:
-            master = build_surface(tie.master, model, max(float(tie.mst), 0.0))
-            slave = build_surface(tie.slave, model, max(float(tie.sst), 0.0))
-        except UserInputError:
-            continue  # reported by the tie itself
-        seg = master.seg[np.all(loc[master.seg] >= 0, axis=1)]
-        keep = loc[slave.nodes] >= 0
-        nodes = loc[slave.nodes[keep]]
-        if seg.shape[0] == 0 or nodes.size == 0:
-            continue
-        lseg = loc[seg]
-        size = float(np.median(np.linalg.norm(x0[lseg[:, 2]] - x0[lseg[:, 0]], axis=1)))
-        tmax = float(master.seg_thick.max(initial=0.0)) + float(
-            slave.node_thick[keep].max(initial=0.0))
-        out.append(tie_links(x0, nodes, lseg, max(0.5 * tmax, 0.1 * size, 1e-6)))
-    return np.concatenate(out)

@@ -65,15 +65,16 @@ def bulk_modulus(mat: MaterialDef) -> float:
     return e / (3.0 * max(1.0 - 2.0 * nu, _MIN_ONE_MINUS_2NU))
 
 
-def segment_stiffness(surf: Surface, model: Model) -> tuple[np.ndarray, np.ndarray]:
+def segment_stiffness(surf: Surface, model: Model, x0: np.ndarray | None = None
+                      ) -> tuple[np.ndarray, np.ndarray]:
     """SOFT=0 stiffness and element depth of each segment.
 
     Returns k_seg (s,) kN/mm (0 where no element is known) and depth (s,) mm,
     the length scale of the release depth (solid faces: V / A of the element
     under the face; shells and free segments: sqrt(A)), both from the
-    initial coordinates.
+    initial coordinates x0 (n, 3) mm (None: ``model.node_x0``).
     """
-    x0 = model.node_x0
+    x0 = model.node_x0 if x0 is None else x0
     s = surf.n_segments
     k = np.zeros(s)
     depth = np.zeros(s)

@@ -232,11 +232,12 @@ def _node_thickness(nodes: np.ndarray, seg: np.ndarray, seg_thick: np.ndarray,
     return t[nodes]
 
 
-def _parts_surface(model: Model, pids: set[int], shell_thick_override: float) -> Surface:
+def _parts_surface(model: Model, pids: set[int], shell_thick_override: float,
+                   x0: np.ndarray | None = None) -> Surface:
     sgroups = [i for i, g in enumerate(model.solid_groups) if g.pid in pids]
     hgroups = [i for i, g in enumerate(model.shell_groups) if g.pid in pids]
     faces, fg, fe = solid_exterior_faces([model.solid_groups[i].conn for i in sgroups],
-                                         model.node_x0)
+                                         model.node_x0 if x0 is None else x0)
     fg = np.array([sgroups[i] for i in fg], dtype=np.int32) if fg.size else fg
     segs = [faces]
     kind = [np.full(faces.shape[0], SEG_SOLID, np.int8)]
@@ -264,10 +265,12 @@ def _parts_surface(model: Model, pids: set[int], shell_thick_override: float) ->
                    node_thick=_node_thickness(nodes, seg, st, model.n_nodes))
 
 
-def model_surface(model: Model, shell_thick_override: float = 0.0) -> Surface:
-    """Surface of every part of the model (exterior solid faces + all shells)."""
+def model_surface(model: Model, shell_thick_override: float = 0.0,
+                  x0: np.ndarray | None = None) -> Surface:
+    """Surface of every part of the model (exterior solid faces + all shells); x0 (n, 3)
+    mm the initial coordinates that orient the solid faces (None: ``model.node_x0``)."""
     return _parts_surface(model, set(model.parts) | {g.pid for g in model.solid_groups}
-                          | {g.pid for g in model.shell_groups}, shell_thick_override)
+                          | {g.pid for g in model.shell_groups}, shell_thick_override, x0)
 
 
 def _match_segments(given: np.ndarray, ref: Surface) -> np.ndarray:
@@ -290,7 +293,7 @@ def _match_segments(given: np.ndarray, ref: Surface) -> np.ndarray:
 
 
 def build_surface(ref: SurfaceRef, model: Model, shell_thick_override: float = 0.0,
-                  model_surf: Surface | None = None) -> Surface:
+                  model_surf: Surface | None = None, x0: np.ndarray | None = None) -> Surface:
     """Build the contact surface of one side of a contact.
 
     ref.kind ``"parts"`` / ``"all"``: exterior faces of the parts' solids and
@@ -300,7 +303,9 @@ def build_surface(ref: SurfaceRef, model: Model, shell_thick_override: float = 0
     segments, the node set only (thickness from shells through the node).
     ``shell_thick_override`` (mm, SST / MST; 0 = use the shell thickness)
     applies to shell segments and shell nodes only, as in LS-DYNA.
-    ``model_surf`` (optional) is a cached :func:`model_surface`.
+    ``model_surf`` (optional) is a cached :func:`model_surface`; ``x0`` (n, 3) mm
+    the initial coordinates that orient solid faces outward (None:
+    ``model.node_x0``; the run's set-up passes the tied contacts' coordinates).
     """
     kind = ref.kind
     if kind in ("parts", "all"):
@@ -311,8 +316,9 @@ def build_surface(ref: SurfaceRef, model: Model, shell_thick_override: float = 0
                    and not any(g.pid == p for g in model.solid_groups + model.shell_groups)]
         if missing:
             raise UserInputError(f"contact surface refers to unknown part(s) {sorted(missing)}")
-        return _parts_surface(model, pids, shell_thick_override)
-    ms = model_surf if model_surf is not None else model_surface(model, shell_thick_override)
+        return _parts_surface(model, pids, shell_thick_override, x0)
+    ms = model_surf if model_surf is not None else model_surface(model, shell_thick_override,
+                                                                 x0)
     if kind == "nodes":
         nodes = np.unique(np.asarray(ref.nodes if ref.nodes is not None else [],
                                      dtype=np.int64))

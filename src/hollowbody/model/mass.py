@@ -59,22 +59,25 @@ def spread_element_mass(node_mass: np.ndarray, conn: np.ndarray, elem_mass: np.n
     np.add.at(node_mass, s[first], np.broadcast_to(share[:, None], s.shape)[first])
 
 
-def lumped_node_mass(model: Model) -> tuple[np.ndarray, dict[int, float]]:
-    """Lumped nodal masses.
+def lumped_node_mass(model: Model, x0: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, dict[int, float]]:
+    """Lumped nodal masses from the initial coordinates x0 (n, 3) mm (None:
+    ``model.node_x0``; a run passes its tied contacts' coordinates).
 
     Returns ``node_mass`` (n,) kg and ``part_mass`` {pid: kg} (element masses
     only; *ELEMENT_MASS is in ``node_mass`` but in no part).
     """
+    x0 = model.node_x0 if x0 is None else x0
     node_mass = model.node_extra_mass.astype(np.float64).copy()
     part_mass: dict[int, float] = {}
     for g in model.solid_groups:
         rho = model.material_of(g.pid).density
-        m = rho * np.abs(hex_volumes(g.conn, model.node_x0))
+        m = rho * np.abs(hex_volumes(g.conn, x0))
         spread_element_mass(node_mass, g.conn, m)
         part_mass[g.pid] = part_mass.get(g.pid, 0.0) + float(m.sum())
     for g in model.shell_groups:
         rho = model.material_of(g.pid).density
-        m = rho * quad_areas(g.conn, model.node_x0) * g.thickness.mean(axis=1)
+        m = rho * quad_areas(g.conn, x0) * g.thickness.mean(axis=1)
         spread_element_mass(node_mass, g.conn, m)
         part_mass[g.pid] = part_mass.get(g.pid, 0.0) + float(m.sum())
     return node_mass, part_mass

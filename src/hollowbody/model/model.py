@@ -260,7 +260,7 @@ class TiedContactDef:
     initial gap is kept, nodes are not moved onto the surface). sst, mst (mm):
     contact thickness overrides (0 = shell thickness; negative = the search
     tolerance itself); sfst, sfmt: their scale factors. See
-    :mod:`hollowbody.solver.tied`.
+    :mod:`hollowbody.contact.tied`.
     """
 
     cid: int

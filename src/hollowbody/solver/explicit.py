@@ -125,7 +125,7 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         for rt in plan.elements:
             for w in getattr(rt, "warnings", []) or []:
                 outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
-        if plan.ties is not None:  # [tied] set-up messages (hollowbody.solver.tied)
+        if plan.ties is not None:  # [tied] set-up messages (hollowbody.contact.tied)
             plan.ties.log(lambda lvl, msg: outputs.log(msg, getattr(logging, lvl.upper())))
     status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
     complete = True  # the State is that of a whole cycle (a dump of it can be resumed)

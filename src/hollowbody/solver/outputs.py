@@ -144,7 +144,7 @@ class RunOutputs:
         if self.clocks["nodout"].due(t) or force:
             hist = self.model.output.history_nodes
             if hist.size:
-                u = state.x[hist] - self.model.node_x0[hist]
+                u = state.x[hist] - self.asm.node_x0[hist]
                 for k, i in enumerate(hist):
                     self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *state.v[i]])
         if self.clocks["rbdout"].due(t) or force:
@@ -206,7 +206,7 @@ class RunOutputs:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
         if not cells:
             return
-        u = state.x - self.model.node_x0
+        u = state.x - self.asm.node_x0
         self.vtk.write(state.t, state.x, {"displacement [mm]": u, "velocity [mm/ms]": state.v},
                        cells, data)
 

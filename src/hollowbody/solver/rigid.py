@@ -114,11 +114,13 @@ class RigidBody:
         x[self.nodes] = self.xc + self.local0 @ self.rot.T
 
 
-def build_rigid_bodies(model: Model, node_mass: np.ndarray) -> list[RigidBody]:
+def build_rigid_bodies(model: Model, node_mass: np.ndarray,
+                       node_x0: np.ndarray | None = None) -> list[RigidBody]:
     """One RigidBody per rigid part, with initial velocity from ``model.node_v0``.
 
     The initial V and w are the least-squares rigid motion of the part's nodal
     initial velocities (momentum-preserving), unless *PART_INERTIA gives them.
+    node_x0: (n, 3) mm initial coordinates (None: ``model.node_x0``).
     """
     bodies = []
     for pid in model.rigid_pids():
@@ -126,7 +128,7 @@ def build_rigid_bodies(model: Model, node_mass: np.ndarray) -> list[RigidBody]:
         nodes = part_nodes(model, pid)
         if nodes.size == 0:
             continue
-        x0 = model.node_x0[nodes]
+        x0 = (model.node_x0 if node_x0 is None else node_x0)[nodes]
         props = point_mass_properties(x0, node_mass[nodes])
         pin = model.part_inertia.get(pid)
         if pin is not None:

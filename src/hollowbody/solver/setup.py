@@ -47,12 +47,15 @@ class Assembly:
     node_rot_inertia: np.ndarray = field(default_factory=lambda: np.zeros(0))
     has_rotations: bool = False
     counts: dict[str, int] = field(default_factory=dict)
-    #: tied contacts (:class:`hollowbody.solver.tied.TieSet`), None when there are none
+    #: tied contacts (:class:`hollowbody.contact.tied.TieSet`), None when there are none
     ties: object | None = None
     #: SPCs and prescribed motions (:class:`hollowbody.solver.boundary.Constraints`)
     constraints: Constraints | None = None
     #: delete failed elements instead of ending the run (ERODE, or the run's option)
     erode: bool = False
+    #: (n, 3) float64 mm initial coordinates of the run: the model's with the tied
+    #: slave nodes moved onto their master surface (the Model keeps the deck's)
+    node_x0: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
 
     def element_counts(self) -> dict[str, int]:
         return dict(self.counts)
@@ -113,20 +116,22 @@ def volumetric_step_factor(kind: str, params: dict[str, float], curves: dict) ->
 def assemble(model: Model) -> Assembly:
     """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
     from hollowbody.contact import ContactRuntime
+    from hollowbody.contact.tied import build_ties
     from hollowbody.elements.solid_group import SolidGroupRuntime
-    from hollowbody.solver.tied import build_ties
 
     ties = build_ties(model)  # [tied] first: may move slave nodes onto the master surface
-    node_mass, part_mass = lumped_node_mass(model)
+    x0 = model.node_x0.copy() if ties is None else ties.node_x0  # [tied] the run's x0
+    node_mass, part_mass = lumped_node_mass(model, x0)
     counts = {"hexahedra": 0, "wedges": 0, "tetrahedra": 0, "other_solids": 0, "shells": 0}
     asm = Assembly(node_mass=node_mass, part_mass=part_mass,
-                   deformable=np.ones(model.n_nodes, dtype=bool), tssfac=model.controls.tssfac)
+                   deformable=np.ones(model.n_nodes, dtype=bool), tssfac=model.controls.tssfac,
+                   node_x0=x0)
     n = model.n_nodes
     for g in model.solid_groups:
         for k, c in _solid_kind_counts(g.conn).items():
             counts[k] += c
         mat = model.material_of(g.pid)
-        elem_mass = mat.density * np.abs(hex_volumes(g.conn, model.node_x0))
+        elem_mass = mat.density * np.abs(hex_volumes(g.conn, x0))
         asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
         if mat.kind == "rigid":
             continue
@@ -134,13 +139,13 @@ def assemble(model: Model) -> Assembly:
             raise DeckError(f"material {mat.mid} ({mat.keyword or mat.kind}) of part {g.pid} "
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
-        rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, model.node_x0)
+        rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
         rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves)
         asm.elements.append(rt)
     for g in model.shell_groups:
         counts["shells"] += int(g.conn.shape[0])
         mat = model.material_of(g.pid)
-        elem_mass = mat.density * quad_areas(g.conn, model.node_x0) * g.thickness.mean(axis=1)
+        elem_mass = mat.density * quad_areas(g.conn, x0) * g.thickness.mean(axis=1)
         asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
         if mat.kind == "rigid":
             continue
@@ -153,7 +158,7 @@ def assemble(model: Model) -> Assembly:
                             part.source.line, "PART") from None
         asm.elements.append(ShellGroupRuntime(g, mat, model.sections[model.parts[g.pid].secid],
                                               model.hourglass_of(g.pid), model.curves,
-                                              model.node_x0,
+                                              x0,
                                               thickness_update=model.controls.istupd == 1))
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
@@ -165,7 +170,7 @@ def assemble(model: Model) -> Assembly:
     if ties is not None:  # [tied] slave masses / inertias moved to the master nodes
         ties.transfer_mass(node_mass, asm.node_rot_inertia)
     asm.ties = ties
-    asm.bodies = build_rigid_bodies(model, node_mass)
+    asm.bodies = build_rigid_bodies(model, node_mass, x0)
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
     asm.constraints = Constraints(model, asm.bodies)
@@ -180,5 +185,5 @@ def assemble(model: Model) -> Assembly:
             rigid_share[b.nodes] = b.mass / b.nodes.size
     for cdef in model.contacts:
         asm.contacts.append(ContactRuntime(cdef, model, contact_mass, rigid_node,
-                                           fixed_node.all(axis=1), rigid_share))
+                                           fixed_node.all(axis=1), rigid_share, x0=x0))
     return asm

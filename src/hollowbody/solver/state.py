@@ -83,8 +83,7 @@ def init_state(model, plan) -> State:  # noqa: ANN001 - Model, Assembly
     """The State at t = 0 of ``model`` run with ``plan`` (an Assembly), before the
     initial forces (see :func:`hollowbody.solver.step.start`)."""
     n = model.n_nodes
-    x0 = getattr(plan, "node_x0", None)
-    x0 = model.node_x0 if x0 is None else x0
+    x0 = plan.node_x0 if plan.node_x0.shape == (n, 3) else model.node_x0
     node_mass = plan.node_mass.copy()
     rot = plan.node_rot_inertia.copy() if plan.node_rot_inertia.size == n else np.zeros(n)
     inv_m, inv_i = _inverse(node_mass), _inverse(rot)
@@ -105,6 +104,8 @@ def state_parts(plan, state: State) -> dict[str, object]:  # noqa: ANN001 - Asse
         parts[f"elements/{k}"] = rt
     for k, c in enumerate(plan.contacts):
         parts[f"contacts/{k}"] = c
+        for j, p in enumerate(getattr(c, "passes", ())):
+            parts[f"contacts/{k}/passes/{j}"] = p
     for k, b in enumerate(plan.bodies):
         parts[f"bodies/{k}"] = b
     if plan.ties is not None:

@@ -1,17 +1,13 @@
-"""Tied-contact kernels (hollowbody.solver.tied, tied_search) on hand-made arrays."""
+"""Tied-contact kernels (hollowbody.contact.tied) on hand-made arrays."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from hollowbody.solver.tied import TieSet
-from hollowbody.solver.tied_search import (
-    closest_point,
-    closest_segments,
-    local_offsets,
-    shape_weights,
-)
+from hollowbody.contact.geometry import closest_point, project_segment, shape_weights
+from hollowbody.contact.tied import TieSet
+from hollowbody.contact.tied.search import closest_segments, local_offsets
 
 # a warped quadrilateral (corner 3 lifted) and a triangle (N4 == N3), nodes 0-6
 X0 = np.array([[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [11.0, 9.0, 0.0], [-1.0, 10.0, 2.0],
@@ -51,6 +47,42 @@ def test_closest_point_matches_brute_force(s):
         assert np.sqrt(d2) == pytest.approx(np.linalg.norm(w @ xs - p), rel=1e-12)
         assert np.sqrt(d2) <= _brute(xs, tri, p) + 1e-9
         assert np.sqrt(d2) >= _brute(xs, tri, p) - 0.05  # grid resolution
+
+
+@pytest.mark.parametrize("s", [0, 1])
+def test_closest_point_is_the_contact_projection_on_the_segment(s):
+    """Where the contact's foot point lies on the segment, the tie's closest point is
+    that point (one projection: same natural coordinates to round-off)."""
+    rng = np.random.default_rng(4)
+    xs = X0[SEG[s]]
+    tri = bool(SEG[s, 3] == SEG[s, 2])
+    seg = SEG[s:s + 1].astype(np.int32) - SEG[s].min()
+    x = X0[SEG[s].min():SEG[s].max() + 1]
+    n_on = 0
+    for p in xs.mean(axis=0) + rng.normal(scale=[3.0, 3.0, 2.0], size=(40, 3)):
+        ok, inside, *_, w0, w1, w2, w3 = project_segment(p[0], p[1], p[2], x, seg, 0)
+        w = np.array([w0, w1, w2, w3])
+        if not (ok and inside and w.min() >= 0.0):
+            continue
+        n_on += 1
+        u, v, _ = closest_point(xs, tri, p)
+        wt = np.zeros(4)
+        shape_weights(u, v, tri, wt)
+        np.testing.assert_allclose(wt, w, rtol=0, atol=1e-12)
+    assert n_on > 10
+
+
+def test_closest_point_on_a_folded_quad_is_the_true_closest_point():
+    """The folded wall segment of the contact's projection test, where Newton does not
+    converge for this node and (p - xp) . n of its last iterate is only 0.8 mm: the
+    closest point is the true one (brute force: 7.5 mm), not a false foot point."""
+    xs = np.array([[-35.993, -36.171, 22.978], [-29.576, -39.538, 12.938],
+                   [-30.552, -38.699, 12.912], [-35.745, -35.695, 27.803]])
+    p = np.array([-23.850, -38.160, 17.768])
+    u, v, d2 = closest_point(xs, False, p)
+    assert np.sqrt(d2) <= _brute(xs, False, p) + 1e-9
+    assert np.sqrt(d2) >= _brute(xs, False, p) - 0.05
+    assert np.sqrt(d2) > 7.0
 
 
 def _ties(points, project=True):
