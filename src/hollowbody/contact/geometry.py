@@ -119,16 +119,9 @@ def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
 
 
 @njit(cache=True, inline="always")
-def _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0, eta0,
-                 iters):
-    """Newton iteration for the foot of the normal through p on the bilinear
-    quadrilateral with corners 0..3 (mm), from (xi0, eta0), at most ``iters`` steps.
-
-    Returns (ok, xi, eta, step): ok False when the iteration breaks down (singular
-    matrix); step the last |d xi| + |d eta| (0 once below 1e-10, or for a
-    parallelogram, where one step is exact). The iterates are held in [-3, 3]^2.
-    """
-    # x(xi, eta) = c0 + xi c1 + eta c2 + xi eta c3
+def _quad_coefficients(x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3):
+    """Coefficients of x(xi, eta) = c0 + xi c1 + eta c2 + xi eta c3 of the bilinear
+    quadrilateral with corners 0..3 (mm): (c0x, c0y, c0z, c1x, ..., c3z)."""
     c0x = 0.25 * (x0 + x1 + x2 + x3)
     c0y = 0.25 * (y0 + y1 + y2 + y3)
     c0z = 0.25 * (z0 + z1 + z2 + z3)
@@ -141,6 +134,22 @@ def _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
     c3x = 0.25 * (x0 - x1 + x2 - x3)
     c3y = 0.25 * (y0 - y1 + y2 - y3)
     c3z = 0.25 * (z0 - z1 + z2 - z3)
+    return c0x, c0y, c0z, c1x, c1y, c1z, c2x, c2y, c2z, c3x, c3y, c3z
+
+
+@njit(cache=True, inline="always")
+def _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0, eta0,
+                 iters):
+    """Newton iteration for the foot of the normal through p on the bilinear
+    quadrilateral with corners 0..3 (mm), from (xi0, eta0), at most ``iters`` steps.
+
+    Returns (ok, xi, eta, step): ok False when the iteration breaks down (singular
+    matrix); step the last |d xi| + |d eta| (0 once below 1e-10, or for a
+    parallelogram, where one step is exact). The iterates are held in [-3, 3]^2.
+    """
+    # x(xi, eta) = c0 + xi c1 + eta c2 + xi eta c3
+    (c0x, c0y, c0z, c1x, c1y, c1z, c2x, c2y, c2z, c3x, c3y,
+     c3z) = _quad_coefficients(x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3)
     xi = xi0
     eta = eta0
     ok = False
@@ -209,18 +218,8 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
     """
     ok, xi, eta, step = _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3,
                                      z3, xi0, eta0, _NEWTON_ITERS)
-    c0x = 0.25 * (x0 + x1 + x2 + x3)
-    c0y = 0.25 * (y0 + y1 + y2 + y3)
-    c0z = 0.25 * (z0 + z1 + z2 + z3)
-    c1x = 0.25 * (-x0 + x1 + x2 - x3)
-    c1y = 0.25 * (-y0 + y1 + y2 - y3)
-    c1z = 0.25 * (-z0 + z1 + z2 - z3)
-    c2x = 0.25 * (-x0 - x1 + x2 + x3)
-    c2y = 0.25 * (-y0 - y1 + y2 + y3)
-    c2z = 0.25 * (-z0 - z1 + z2 + z3)
-    c3x = 0.25 * (x0 - x1 + x2 - x3)
-    c3y = 0.25 * (y0 - y1 + y2 - y3)
-    c3z = 0.25 * (z0 - z1 + z2 - z3)
+    (c0x, c0y, c0z, c1x, c1y, c1z, c2x, c2y, c2z, c3x, c3y,
+     c3z) = _quad_coefficients(x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3)
     if not ok:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     tx = c1x + eta * c3x
