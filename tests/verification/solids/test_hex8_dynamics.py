@@ -1,8 +1,13 @@
-"""Dynamic verification with a minimal central-difference loop written here.
+"""Dynamic verification of the hexahedron on the engine's own cycle.
+
+Each case is a Model run cycle by cycle with :class:`hollowbody.testing.engine.EngineRun`
+(the engine's plan, State and ``step``: its central differences, constraints and
+time-step rule):
 
 * dilatational wave speed in a laterally confined column;
 * energy conservation of elastic (and hyperelastic rubber) free vibration;
-* hourglass work is non-negative in the viscous form.
+* hourglass work is non-negative in the viscous form;
+* internal + hourglass energy is the scheme's own work of the element forces.
 """
 
 from __future__ import annotations
@@ -12,9 +17,16 @@ import math
 import numpy as np
 import pytest
 
-from hollowbody.elements.solid_group import SolidGroupRuntime
 from hollowbody.mesh import block_mesh, distort
-from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
+from hollowbody.model.model import (
+    Curve,
+    HourglassDef,
+    MaterialDef,
+    NodalSPC,
+    PrescribedMotion,
+)
+from hollowbody.testing.engine import EngineRun
+from hollowbody.testing.models import PartSpec, assemble_model
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
                           0.1, 0.2, 0.3, 0.5, 0.75, 1.0])
@@ -22,84 +34,51 @@ MUSCLE_MPA = np.array([-11.8, -4.15, -1.90, -0.987, -0.543, -0.299, -0.153, -0.0
                        0.0419, 0.0716, 0.093, 0.120, 0.139, 0.148])
 
 
-def make(x0, conn, mat, curves=None, **hg):
-    g = SolidGroup(1, np.arange(len(conn)), conn)
-    return SolidGroupRuntime(g, mat, HourglassDef(0, **hg), curves or {}, x0)
+def make(x0, conn, mat: MaterialDef, curves=None, v0=None, **hg):
+    """A one-part Model of hexahedra (part 1, hourglass card 1 with ``hg``)."""
+    model = assemble_model([PartSpec(1, x0, conn, kind=mat.kind, params=dict(mat.params),
+                                     density=mat.density)])
+    model.hourglass[1] = HourglassDef(1, **hg)
+    model.parts[1].hgid = 1
+    model.curves.update(curves or {})
+    if v0 is not None:
+        model.node_v0 = np.asarray(v0, dtype=np.float64).copy()
+    return model
 
 
-def lumped_mass(rt, n_nodes):
-    m = np.zeros(n_nodes)
-    np.add.at(m, rt.conn.ravel(), np.repeat(rt.mass / 8.0, 8))
-    return m
+def group(run: EngineRun):
+    """The run's element-group runtime (one part)."""
+    (rt,) = run.plan.elements
+    return rt
 
 
-class Loop:
-    """Central difference with a variable step (as the solver does).
-
-    v^{n+1/2} = v^{n-1/2} + (dt^{n-1/2} + dt^{n+1/2})/2 a^n, x^{n+1} = x^n + dt^{n+1/2} v^{n+1/2},
-    dt^{n+1/2} = tssfac * dt_crit(t^n), or a constant ``dt`` when given.
-    """
-
-    def __init__(self, rt, x0, v0, fix=None, tssfac=0.9, dt=None):
-        self.rt = rt
-        self.tssfac = tssfac
-        self.fixed_dt = dt
-        self.x = x0.copy()
-        self.m = lumped_mass(rt, x0.shape[0])
-        self.f = np.zeros_like(x0)
-        self.fix = fix
-        self.t = 0.0
-        dt_crit, _, _ = rt.add_forces(self.x, np.zeros_like(x0), 0.0, self.f)
-        self.dt = dt if dt is not None else self.tssfac * dt_crit
-        self.v = v0 + 0.5 * self.dt * self.f / self.m[:, None]  # v^{1/2}
-        self.apply_fix(self.v)
-
-    def apply_fix(self, v):
-        if self.fix is not None:
-            self.fix(v, self.t)
-
-    def step(self):
-        dt = self.dt
-        self.x += dt * self.v
-        self.t += dt
-        self.f[:] = 0.0
-        dt_crit, _, _ = self.rt.add_forces(self.x, self.v, dt, self.f)
-        self.dt = self.fixed_dt if self.fixed_dt is not None else self.tssfac * dt_crit
-        v_new = self.v + 0.5 * (dt + self.dt) * self.f / self.m[:, None]
-        self.apply_fix(v_new)
-        v_full = self.v + 0.5 * dt * self.f / self.m[:, None]
-        self.v = v_new
-        return v_full
-
-    def kinetic(self, v_full):
-        return 0.5 * float((self.m[:, None] * v_full**2).sum())
-
-    def discrete_invariant(self):
-        """Exactly conserved by the scheme for a constant step and no constraints.
-
-        KE(v^{N+1/2}) - dt/2 f^N . v^{N+1/2} + (work of the element forces up to t^N).
-        """
-        rt = self.rt
-        return (self.kinetic(self.v) - 0.5 * self.dt * float((self.f * self.v).sum())
-                + rt.internal_energy + rt.hourglass_energy)
+def discrete_invariant(run: EngineRun, dt: float) -> float:
+    """Exactly conserved by the scheme for a constant step and no constraints:
+    KE(v^{N+1/2}) - dt/2 f^N . v^{N+1/2} + (work of the element forces up to t^N)."""
+    s, rt = run.state, group(run)
+    # v^{N+1/2} of the next cycle (the first cycle's step is dt/2, from v^0)
+    v = s.v + (0.5 * dt if s.cycle == 0 else dt) * s.f * s.inv_m[:, None]
+    return (run.kinetic(v) - 0.5 * dt * float((s.f * v).sum())
+            + rt.internal_energy + rt.hourglass_energy)
 
 
 def test_dilatational_wave_speed_in_confined_column():
     n, h = 200, 1.0
     x0, conn = block_mesh((1, 1, n), (h, h, n * h))
     e_mod, nu, rho = 0.2, 0.3, 1e-6
-    rt = make(x0, conn, MaterialDef(1, "elastic", rho, {"E": e_mod, "PR": nu}),
-              qm=0.1, q1=0.0, q2=0.0)
+    model = make(x0, conn, MaterialDef(1, "elastic", rho, {"E": e_mod, "PR": nu}),
+                 qm=0.1, q1=0.0, q2=0.0)
     c = math.sqrt(e_mod * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho)
     v_in = 0.01  # mm/ms, pushed in at z = 0
-    bottom = x0[:, 2] < 1e-9
-
-    def fix(v, t):
-        v[:, 0] = 0.0  # lateral confinement: uniaxial strain
-        v[:, 1] = 0.0
-        v[bottom, 2] = v_in
-
-    loop = Loop(rt, x0, np.zeros_like(x0), fix)
+    bottom = np.nonzero(x0[:, 2] < 1e-9)[0]
+    # lateral confinement (uniaxial strain): x and y held everywhere
+    model.spcs.append(NodalSPC(nodes=np.arange(x0.shape[0]),
+                               dofs=np.tile([True, True, False, False, False, False],
+                                             (x0.shape[0], 1))))
+    model.curves[9] = Curve(9, np.array([0.0, 1e3]), np.array([v_in, v_in]))
+    model.prescribed.append(PrescribedMotion(target="nodes", dof=3, vad=0, lcid=9,
+                                             nodes=bottom))
+    loop = EngineRun(model)
     stations = {50: None, 150: None}
     node_at = {k: np.nonzero(np.abs(x0[:, 2] - k * h) < 1e-9)[0] for k in stations}
     while any(t is None for t in stations.values()) and loop.t < 2 * n * h / c:
@@ -130,17 +109,21 @@ def test_elastic_free_vibration_conserves_energy(ihq):
     x0, conn = block_mesh((3, 3, 6), (6.0, 6.0, 12.0))
     x0 = distort(x0, 0.2, seed=2)
     qm = 0.05 if ihq == 4 else 0.0
-    rt = make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
-              ihq=max(ihq, 1), qm=qm, q1=0.0, q2=0.0)
     v0 = initial_velocity(x0)
-    loop = Loop(rt, x0, v0)
-    e0 = 0.5 * float((loop.m[:, None] * v0**2).sum())
+    loop = EngineRun(make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
+                          v0=v0, ihq=max(ihq, 1), qm=qm, q1=0.0, q2=0.0))
+    rt = group(loop)
+    e0 = loop.kinetic(v0)
     energies = []
-    for _ in range(3000):  # several periods of the lowest modes
+    ie_max = 0.0
+    # several periods of the lowest modes (the engine's step is the volumetric factor
+    # sqrt((1 - nu) / (1 + nu)) = 0.73 of TSSFAC L/c: 4,100 cycles)
+    for _ in range(4100):
         v_full = loop.step()
         energies.append(loop.kinetic(v_full) + rt.internal_energy + rt.hourglass_energy)
+        ie_max = max(ie_max, rt.internal_energy)
     energies = np.array(energies)
-    assert rt.internal_energy > 0.1 * e0  # energy really went through the springs
+    assert ie_max > 0.1 * e0  # energy really went through the springs
     assert np.abs(energies - e0).max() < 0.01 * e0
 
 
@@ -149,12 +132,13 @@ def test_rubber_free_vibration_conserves_energy():
     mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.0, "SGL": 1.0, "SW": 1.0,
                                              "ST": 1.0, "LCID": 4})
     curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
-    rt = make(x0, conn, mat, curves, ihq=4, qm=0.05, q1=0.0, q2=0.0)
     v0 = 20.0 * initial_velocity(x0)  # large strains and rotations
     # nearly incompressible (KM / G0 = 30) on a coarse free mesh: the exact stability
-    # limit is about 0.83 L/c (see docs/elements.md), so stay below it
-    loop = Loop(rt, x0, v0, tssfac=0.7)
-    e0 = 0.5 * float((loop.m[:, None] * v0**2).sum())
+    # limit is about 0.83 L/c (see docs/elements.md); the engine's step rule (volumetric
+    # factor 0.58 x TSSFAC 0.9) stays below it
+    loop = EngineRun(make(x0, conn, mat, curves, v0=v0, ihq=4, qm=0.05, q1=0.0, q2=0.0))
+    rt = group(loop)
+    e0 = loop.kinetic(v0)
     energies = []
     ie_max = 0.0
     for _ in range(4000):
@@ -171,10 +155,10 @@ def test_mu_damping_dissipates():
     curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
     mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.3, "SGL": 1.0, "SW": 1.0,
                                              "ST": 1.0, "LCID": 4})
-    rt = make(x0, conn, mat, curves, ihq=4, qm=0.05, q1=0.0, q2=0.0)
     v0 = 20.0 * initial_velocity(x0)
-    loop = Loop(rt, x0, v0, tssfac=0.7)
-    e0 = 0.5 * float((loop.m[:, None] * v0**2).sum())
+    loop = EngineRun(make(x0, conn, mat, curves, v0=v0, ihq=4, qm=0.05, q1=0.0, q2=0.0))
+    rt = group(loop)
+    e0 = loop.kinetic(v0)
     for _ in range(4000):
         v_full = loop.step()
     total = loop.kinetic(v_full) + rt.internal_energy + rt.hourglass_energy
@@ -187,11 +171,11 @@ def test_mu_damping_dissipates():
 def test_viscous_hourglass_energy_non_negative():
     x0, conn = block_mesh((3, 3, 3), (3.0, 3.0, 3.0))
     x0 = distort(x0, 0.2, seed=5)
-    rt = make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
-              ihq=2, qm=0.1)
     rng = np.random.default_rng(1)
     v0 = rng.normal(scale=0.05, size=x0.shape)  # excites hourglass modes
-    loop = Loop(rt, x0, v0)
+    loop = EngineRun(make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
+                          v0=v0, ihq=2, qm=0.1))
+    rt = group(loop)
     history = []
     for _ in range(300):
         loop.step()
@@ -214,21 +198,22 @@ def test_energy_accounting_matches_central_difference_work(case):
         mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.2, "G": 1e-4,
                                                  "SIGF": 1e-5, "SGL": 1.0, "SW": 1.0,
                                                  "ST": 1.0, "LCID": 4})
-        rt = make(x0, conn, mat, {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)},
-                  ihq=1, qm=0.1)
+        curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
+        hg = {"ihq": 1, "qm": 0.1}
     else:
-        ihq = 2 if case == "elastic-viscous" else 5
-        rt = make(x0, conn, MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3}),
-                  ihq=ihq, qm=0.1)
+        mat = MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3})
+        curves, hg = {}, {"ihq": 2 if case == "elastic-viscous" else 5, "qm": 0.1}
     rng = np.random.default_rng(3)
     v0 = rng.normal(scale=0.2, size=x0.shape)
-    f = np.zeros_like(x0)
-    dt = 0.5 * rt.add_forces(x0.copy(), np.zeros_like(x0), 0.0, f)[0]
-    loop = Loop(rt, x0, v0, dt=dt)
-    i0 = loop.discrete_invariant()
+    # the step: half the critical step at rest (a constant step, the invariant is exact)
+    at_rest = EngineRun(make(x0, conn, mat, curves, **hg))
+    dt = 0.5 * at_rest.state.dt_next / at_rest.plan.tssfac
+    loop = EngineRun(make(x0, conn, mat, curves, v0=v0, **hg), dt=dt)
+    rt = group(loop)
+    i0 = discrete_invariant(loop, dt)
     inv = []
     for _ in range(400):
         loop.step()
-        inv.append(loop.discrete_invariant())
+        inv.append(discrete_invariant(loop, dt))
     assert rt.internal_energy > 0.0 and rt.hourglass_energy > 0.0
     np.testing.assert_allclose(inv, i0, rtol=1e-9)
