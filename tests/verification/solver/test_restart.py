@@ -42,7 +42,7 @@ def one_thread():
 
 
 def _deck(**kw):
-    return cube_and_plate(e=0.05, speed=4.0, end=1.5, friction=0.2, **kw)
+    return cube_and_plate(e=0.1, speed=3.0, end=1.5, friction=0.2, **kw)
 
 
 def _run(deck, out, **kw):
@@ -120,7 +120,7 @@ _KILLER = textwrap.dedent("""
         if state.cycle == {kill}:
             os.kill(os.getpid(), signal.SIGKILL)
     explicit.step = step
-    deck = cube_and_plate(e=0.05, speed=4.0, end=1.5, friction=0.2)
+    deck = cube_and_plate(e=0.1, speed=3.0, end=1.5, friction=0.2)
     run_model(build_model(deck), {out!r}, vtk=False, dump_cycles={every})
 """)
 
