@@ -51,6 +51,7 @@ element (power-consistent; zero for rigid motion).
 from __future__ import annotations
 
 import math
+from types import ModuleType
 
 import numpy as np
 from numba import get_num_threads, njit, prange
@@ -65,21 +66,10 @@ from hollowbody.elements.shell_bt_kinematics import (
 )
 from hollowbody.materials.plane_stress_plasticity import (
     FASTMATH,
-    KIND_ELASTIC,
     P_C,
-    P_CS_C,
     P_E,
-    P_FAIL,
     P_G,
-    P_HK,
-    P_KIND,
     P_NU,
-    P_RATE_CURVE,
-    YIELD_TOL,
-    elastic_plane_stress,
-    plane_stress_return,
-    rate_factor,
-    table_eval,
 )
 
 HG_NONE = -1
@@ -127,46 +117,52 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
     return out0, out1, out2, out3, out4, out5
 
 
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
-def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta,
-                   wts, kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte,
-                   die, dhe, stress_out, pmax, nrm, area0, flip):
+@njit(error_model="numpy", fastmath=FASTMATH)
+def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
 
-    x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
-    conn (e,4) int32; alive (e,) bool (set False here when every point failed);
-    tri (e,) bool triangle flags; thick (e,) mm thickness used (updated when
-    ``update_thickness``); t0 (e,) mm initial thickness; ezz (e,) accumulated
-    thickness log strain; mass_q (e,) kg nodal mass share; r2 (e,) mm^2
-    rotational inertia radius^2; zeta, wts (nip,) rule on [-1, 1]; shrf shear
-    factor; mp packed material parameters; hx, hy hardening table; rx, ry
-    rate curve. State, updated in place: sig (e,nip,3) local in-plane stress
-    GPa; epsp (e,nip); back (e,nip,3) or (1,1,3) when no kinematic hardening;
-    pfail (e,nip) uint8; tau (e,2) GPa transverse shear (xz, yz); hgq (e,5)
-    stiffness-hourglass generalized forces; drill (e,4) kN*mm drilling moments.
-    Outputs: fe (e,4,6) kN, kN*mm forces and moments on the element's nodes;
-    dte (e,) ms critical steps (inf for dead elements); die, dhe (e,) J energy
-    increments; stress_out (e,6) GPa global; pmax (e,) max eps_p over points.
-    nrm (e,3) unit normal of the last call (in/out); area0 (e,) mm^2 initial
-    areas; flip (e,) uint8 out: 1 when the element collapsed in its own plane:
-    its area fell below ``COLLAPSED_AREA`` x its initial area, or its normal
-    turned by more than 90 degrees in one step (crushed through zero area,
-    inside out; the stored normal is then kept). The solver stops or erodes it.
+    point_update: the law's ``shell_point_update`` (a compile-time constant of
+    the callers built by :func:`make_shell_kernel`). x (n,3) mm at t^{n+1};
+    v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
+
+    geom = (conn (e,4) int32, tri (e,) bool triangle flags, t0 (e,) mm initial
+    thickness, mass_q (e,) kg nodal mass share, r2 (e,) mm^2 rotational inertia
+    radius^2, area0 (e,) mm^2 initial areas, zeta, wts (nip,) rule on [-1, 1]).
+
+    state, updated in place = (alive (e,) bool (set False here when every point
+    failed), thick (e,) mm thickness used (updated when ``update_thickness``),
+    ezz (e,) accumulated thickness log strain, sig (e,nip,3) local in-plane
+    stress GPa, tau (e,2) GPa transverse shear (xz, yz), hgq (e,5)
+    stiffness-hourglass generalized forces, drill (e,4) kN*mm drilling
+    moments, nrm (e,3) unit normal of the last call).
+
+    params = (mp packed material parameters, hx, hy hardening table, rx, ry
+    rate curve); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
+    kinematic hardening, pfail (e,nip) uint8): the law's, updated in place;
+    kp (N_CONTROLS,) controls K_*.
+
+    out = (fe (e,4,6) kN, kN*mm forces and moments on the element's nodes,
+    dte (e,) ms critical steps (inf for dead elements), die, dhe (e,) J energy
+    increments, stress_out (e,6) GPa global, pmax (e,) max eps_p over points,
+    flip (e,) uint8: 1 when the element collapsed in its own plane: its area
+    fell below ``COLLAPSED_AREA`` x its initial area, or its normal turned by
+    more than 90 degrees in one step (crushed through zero area, inside out;
+    the stored normal is then kept). The solver stops or erodes it).
     """
+    conn, tri, t0, mass_q, r2, area0, zeta, wts = geom
+    alive, thick, ezz, sig, tau, hgq, drill, nrm = state
+    fe, dte, die, dhe, stress_out, pmax, flip = out
+    mp = params[0]
     nip = zeta.shape[0]
     shrf = kp[K_SHRF]
     hg_kind = int(kp[K_HG_KIND])
     qh = kp[K_QH]
     drill_k = kp[K_DRILL]
     update_thickness = kp[K_THICK_UPDATE] > 0.0
-    kind = int(mp[P_KIND])
     e_mod = mp[P_E]
     nu = mp[P_NU]
     g_mod = mp[P_G]
     c_wave = mp[P_C]
-    has_back = mp[P_HK] > 0.0
-    rate_on = mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0
-    fail = mp[P_FAIL]
     hdt = 0.5 * dt
     for i in range(lo, hi):
         flip[i] = 0
@@ -225,46 +221,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
             s0 = sig[i, k, 0]
             s1 = sig[i, k, 1]
             s2 = sig[i, k, 2]
-            dsp = 0.0
-            if kind == KIND_ELASTIC:
-                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
-            elif pfail[i, k] != 0:
-                q0 = 0.0
-                q1 = 0.0
-                q2 = 0.0
-                nfail += 1
-            else:
-                rf = 1.0
-                if rate_on and dt > 0.0:
-                    rf = rate_factor(mp, rx, ry, exx / dt, eyy / dt, exy / dt)
-                a0 = 0.0
-                a1 = 0.0
-                a2 = 0.0
-                if has_back:
-                    a0 = back[i, k, 0]
-                    a1 = back[i, k, 1]
-                    a2 = back[i, k, 2]
-                epn = epsp[i, k]
-                # elastic trial and yield check here; the return mapping only when needed
-                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
-                x0 = q0 - a0
-                x1 = q1 - a1
-                x2 = q2 - a2
-                sy, _ = table_eval(epn, hx, hy)
-                sy *= rf
-                if x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * x2 * x2 > sy * sy * (1.0 + YIELD_TOL):
-                    q0, q1, q2, a0, a1, a2, epn, dsp = plane_stress_return(
-                        s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, mp[P_HK], hx,
-                        hy, rf)
-                if has_back:
-                    back[i, k, 0] = a0
-                    back[i, k, 1] = a1
-                    back[i, k, 2] = a2
-                epsp[i, k] = epn
-                pm = max(pm, epn)
-                if fail > 0.0 and epn >= fail:
-                    pfail[i, k] = 1
-                    nfail += 1
+            q0, q1, q2, dsp, pm, nf = point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm,
+                                                   params, history)
+            nfail += nf
             sig[i, k, 0] = q0
             sig[i, k, 1] = q1
             sig[i, k, 2] = q2
@@ -472,28 +431,48 @@ CHUNK = 64
 PARALLEL_MIN = 512
 
 
-@njit(cache=True, parallel=True)
-def _bt_shell_parallel(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts,
-                       kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe,
-                       dte, die, dhe, stress_out, pmax, nrm, area0, flip):
-    ne = conn.shape[0]
-    nchunk = (ne + CHUNK - 1) // CHUNK
-    for c in prange(nchunk):
-        bt_shell_range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, conn, alive, tri,
-                       thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx, hy, rx, ry, sig,
-                       epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out, pmax,
-                       nrm, area0, flip)
+_KERNELS: dict[str, tuple] = {}
 
 
-def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp,
-                    mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die,
-                    dhe, stress_out, pmax, nrm, area0, flip) -> None:
-    """Every element of a group (arguments as :func:`bt_shell_range`): chunks over
-    threads for large groups, one serial call for small ones or with one thread."""
-    args = (x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx,
-            hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out,
-            pmax, nrm, area0, flip)
-    if conn.shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
-        _bt_shell_parallel(*args)
+def make_shell_kernel(law: ModuleType) -> tuple:
+    """(serial, parallel) shell kernels of one law module (built once per law).
+
+    Both are called as ``kernel(x, v, w, dt, geom, state, params, history, kp,
+    out)`` (arguments as :func:`bt_shell_range`); the parallel one runs chunks
+    of ``CHUNK`` elements over threads. They are closures over the law module,
+    so ``law.shell_point_update`` is a compile-time constant, and are cached on
+    disk (the cache key holds the module reference; as for any numba cache, an
+    edit of the law module alone does not invalidate it: clear ``__pycache__``).
+    """
+    key = law.__name__
+    kernels = _KERNELS.get(key)
+    if kernels is not None:
+        return kernels
+
+    @njit(cache=True)
+    def shell_serial(x, v, w, dt, geom, state, params, history, kp, out):
+        bt_shell_range(law.shell_point_update, 0, geom[0].shape[0], x, v, w, dt, geom, state,
+                       params, history, kp, out)
+
+    @njit(cache=True, parallel=True)
+    def shell_parallel(x, v, w, dt, geom, state, params, history, kp, out):
+        ne = geom[0].shape[0]
+        nchunk = (ne + CHUNK - 1) // CHUNK
+        for c in prange(nchunk):
+            bt_shell_range(law.shell_point_update, c * CHUNK, min(ne, (c + 1) * CHUNK), x, v,
+                           w, dt, geom, state, params, history, kp, out)
+
+    _KERNELS[key] = (shell_serial, shell_parallel)
+    return shell_serial, shell_parallel
+
+
+def bt_shell_forces(law: ModuleType, x, v, w, dt, geom, state, params, history, kp,
+                    out) -> None:
+    """Every element of a group (arguments as :func:`bt_shell_range`) with the
+    kernels of ``law``: chunks over threads for large groups, one serial call
+    for small ones or with one thread."""
+    serial, parallel = make_shell_kernel(law)
+    if geom[0].shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
+        parallel(x, v, w, dt, geom, state, params, history, kp, out)
     else:
-        bt_shell_range(0, conn.shape[0], *args)
+        serial(x, v, w, dt, geom, state, params, history, kp, out)
