@@ -30,9 +30,9 @@ and dt = inf.
 The law is chosen at compile time: the kernel is a closure over the law
 *module*, so numba resolves ``law.solid_update`` as a constant and inlines it;
 one kernel is compiled per law and cached on disk (the cache key of a closure
-holds the pickled module reference, which is stable between processes). As
-for any numba cache, a change in a law module alone does not invalidate the
-cached kernel: clear ``__pycache__`` after editing a law.
+holds its captured values: the module reference, stable between processes,
+and a digest of the law's and the helpers' sources, see kernel_cache, so an
+edit of either compiles the kernel anew).
 """
 
 from __future__ import annotations
@@ -42,6 +42,7 @@ from types import ModuleType
 import numpy as np
 from numba import njit, prange
 
+from hollowbody.elements import hex8_kinematics, hourglass, time_step
 from hollowbody.elements.hex8_kinematics import (
     hex8_max_face_area,
     hex8_volume_derivatives,
@@ -56,6 +57,7 @@ from hollowbody.elements.hourglass import (
     hourglass_stiffness,
     hourglass_viscous,
 )
+from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.time_step import critical_time_step
 
 #: Indices into the hourglass/bulk-viscosity parameter vector ``hg``.
@@ -178,11 +180,15 @@ def make_hex8_kernel(law: ModuleType):
     kernel = _KERNELS.get(key)
     if kernel is not None:
         return kernel
+    stamp = source_stamp(law, hex8_kinematics, hourglass, time_step)
 
     @njit(cache=True, parallel=True, fastmath={"contract"})
     def hex8_kernel(x, v, dt, geom, state, params, history, hg, out):
+        if stamp < 0:  # never: the sources' digest only keys the on-disk cache
+            return
         conn, lfac, volume0, b0, bounds = geom
         alive, stress, volume, hgstate, fwork, dt_elem, c_elem = state
+        consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
         qh, q1, q2 = hg[H_QH], hg[H_Q1], hg[H_Q2]
         nchunk = bounds.shape[0] - 1
@@ -219,7 +225,8 @@ def make_hex8_kernel(law: ModuleType):
                     continue
                 l = vol ** _THIRD
                 n0, n1, n2, n3, n4, n5, rho, modulus, c = law.solid_update(
-                    e, dt, vol, volume0[e], l, xe, b0, lm, rot, work, stress, params, history)
+                    e, dt, vol, volume0[e], l, xe, b0, lm, rot, work, stress, consts, params,
+                    history)
                 stress[e, 0] = n0
                 stress[e, 1] = n1
                 stress[e, 2] = n2

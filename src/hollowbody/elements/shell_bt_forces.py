@@ -51,11 +51,14 @@ element (power-consistent; zero for rigid motion).
 from __future__ import annotations
 
 import math
+import sys
 from types import ModuleType
 
 import numpy as np
 from numba import get_num_threads, njit, prange
 
+from hollowbody.elements import shell_bt_kinematics
+from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.shell_bt_kinematics import (
     bt_bmatrix,
     bt_geometry,
@@ -118,7 +121,8 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
 
 
 @njit(error_model="numpy", fastmath=FASTMATH)
-def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
+def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, consts, params, history, kp,
+                   out):
     """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
 
     point_update: the law's ``shell_point_update`` (a compile-time constant of
@@ -137,7 +141,8 @@ def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, params, histo
     moments, nrm (e,3) unit normal of the last call).
 
     params = (mp packed material parameters, hx, hy hardening table, rx, ry
-    rate curve); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
+    rate curve); consts: the law's ``shell_constants(params)`` (scalars read
+    once per call); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
     kinematic hardening, pfail (e,nip) uint8): the law's, updated in place;
     kp (N_CONTROLS,) controls K_*.
 
@@ -222,7 +227,7 @@ def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, params, histo
             s1 = sig[i, k, 1]
             s2 = sig[i, k, 2]
             q0, q1, q2, dsp, pm, nf = point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm,
-                                                   params, history)
+                                                   consts, params, history)
             nfail += nf
             sig[i, k, 0] = q0
             sig[i, k, 1] = q1
@@ -441,26 +446,35 @@ def make_shell_kernel(law: ModuleType) -> tuple:
     out)`` (arguments as :func:`bt_shell_range`); the parallel one runs chunks
     of ``CHUNK`` elements over threads. They are closures over the law module,
     so ``law.shell_point_update`` is a compile-time constant, and are cached on
-    disk (the cache key holds the module reference; as for any numba cache, an
-    edit of the law module alone does not invalidate it: clear ``__pycache__``).
+    disk (the cache key holds the module reference and a digest of this
+    module's, the kinematics' and the law package's sources, see kernel_cache).
     """
     key = law.__name__
     kernels = _KERNELS.get(key)
     if kernels is not None:
         return kernels
+    # digest of the element loop's, its helpers' and the law's sources: the element
+    # loop is compiled into these closures, whose cache key holds the digest
+    stamp = source_stamp(law, sys.modules[__name__], shell_bt_kinematics)
 
     @njit(cache=True)
     def shell_serial(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never
+            return
+        consts = law.shell_constants(params)
         bt_shell_range(law.shell_point_update, 0, geom[0].shape[0], x, v, w, dt, geom, state,
-                       params, history, kp, out)
+                       consts, params, history, kp, out)
 
     @njit(cache=True, parallel=True)
     def shell_parallel(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never
+            return
+        consts = law.shell_constants(params)
         ne = geom[0].shape[0]
         nchunk = (ne + CHUNK - 1) // CHUNK
         for c in prange(nchunk):
             bt_shell_range(law.shell_point_update, c * CHUNK, min(ne, (c + 1) * CHUNK), x, v,
-                           w, dt, geom, state, params, history, kp, out)
+                           w, dt, geom, state, consts, params, history, kp, out)
 
     _KERNELS[key] = (shell_serial, shell_parallel)
     return shell_serial, shell_parallel

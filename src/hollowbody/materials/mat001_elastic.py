@@ -109,19 +109,30 @@ def solid_erode(history: tuple[np.ndarray, ...], idx: np.ndarray) -> None:
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, history):
+def solid_constants(params):
+    """Kernel: the scalars of ``params`` the update uses, read once per call.
+
+    Returns (lambda, mu GPa, rho0 kg/mm^3, c mm/ms, lambda + 2 mu GPa).
+    """
+    mp = params[0]
+    lam = mp[P_LAMBDA]
+    mu = mp[P_MU]
+    return lam, mu, mp[P_RHO], mp[P_C], lam + 2.0 * mu
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, consts, params, history):
     """Kernel: new stress of element ``e`` (hypoelastic, Hughes-Winget rotation).
 
     dt ms; vol, vol0 current / initial volume mm^3; l = vol^(1/3) mm; xe (8, 3)
     mm nodal positions relative to node 1; b0 (e, 8, 3) reference gradients;
     lm (3, 3) 1/ms mid-step velocity gradient; rot (3, 3) incremental rotation;
-    work (3, 3) scratch; stress (e, 6) GPa old stress (read only); params
-    ``(mp,)``; history ``()``. Returns (s0..s5 GPa new stress, rho kg/mm^3
-    current density, modulus GPa for the hourglass stiffness, c mm/ms wave speed).
+    work (3, 3) scratch; stress (e, 6) GPa old stress (read only); consts from
+    :func:`solid_constants`; params ``(mp,)``; history ``()``. Returns (s0..s5
+    GPa new stress, rho kg/mm^3 current density, modulus GPa for the hourglass
+    stiffness, c mm/ms wave speed).
     """
-    mp = params[0]
-    lam = mp[P_LAMBDA]
-    mu = mp[P_MU]
+    lam, mu, rho0, c, modulus = consts
     d0 = dt * lm[0, 0]
     d1 = dt * lm[1, 1]
     d2 = dt * lm[2, 2]
@@ -132,5 +143,5 @@ def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, his
                                         stress[e, 3], stress[e, 4], stress[e, 5])
     n0, n1, n2, n3, n4, n5 = elastic_update(r0, r1, r2, r3, r4, r5,
                                             d0, d1, d2, d3, d4, d5, lam, mu)
-    rho = mp[P_RHO] * vol0 / vol
-    return n0, n1, n2, n3, n4, n5, rho, lam + 2.0 * mu, mp[P_C]
+    rho = rho0 * vol0 / vol
+    return n0, n1, n2, n3, n4, n5, rho, modulus, c

@@ -251,24 +251,36 @@ def _friction_step(e, rot, fric, e0, e1, e2, e3, e4, e5, gf, sigf):
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, history):
+def solid_constants(params):
+    """Kernel: the scalars of ``params`` the update uses, read once per call.
+
+    Returns (KM, MU, G0, rho0, c_s, G, SIGF, table origin, table inverse step,
+    friction on).
+    """
+    mp = params[0]
+    gf = mp[P_GF]
+    sigf = mp[P_SIGF]
+    return (mp[P_BULK], mp[P_MU], mp[P_G0], mp[P_RHO], mp[P_CS], gf, sigf, mp[P_LN0],
+            mp[P_INVD], gf > 0.0 and sigf > 0.0)
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, consts, params, history):
     """Kernel: new stress of element ``e`` (hyperelastic + damping, module docstring).
 
     dt ms; vol, vol0 current / initial volume mm^3; l = vol^(1/3) mm; xe (8, 3)
     mm nodal positions relative to node 1 (F = sum_a x_a (x) b0_a); b0 (e, 8, 3)
     1/mm reference gradients; lm (3, 3) 1/ms mid-step velocity gradient; rot
     (3, 3) incremental rotation; work (3, 3) scratch (eigenvectors); stress
-    (e, 6) unused (total form); params (mp, ftab, gtab); history (fric, eig),
-    updated for element e. Returns (s0..s5 GPa, rho kg/mm^3, modulus GPa,
-    c mm/ms).
+    (e, 6) unused (total form); consts from :func:`solid_constants`; params
+    (mp, ftab, gtab); history (fric, eig), updated for element e. Returns
+    (s0..s5 GPa, rho kg/mm^3, modulus GPa, c mm/ms).
     """
-    mp, ftab, gtab = params
+    bulk, mu_d, g0, rho0, cs, gf, sigf, ln0, invd, use_fric = consts
+    ftab = params[1]
+    gtab = params[2]
     fric = history[0]
     eig = history[1]
-    bulk = mp[P_BULK]
-    g0 = mp[P_G0]
-    gf = mp[P_GF]
-    sigf = mp[P_SIGF]
     vec = work
     f00 = f01 = f02 = f10 = f11 = f12 = f20 = f21 = f22 = 0.0
     for a in range(8):
@@ -289,13 +301,13 @@ def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, his
         vec[i, 2] = eig[e, i, 2]
     t0, t1, t2, t3, t4, t5, gt = rubber_deviatoric(f00, f01, f02, f10, f11, f12,
                                                    f20, f21, f22, vec, ftab, gtab,
-                                                   mp[P_LN0], mp[P_INVD])
+                                                   ln0, invd)
     for i in range(3):
         eig[e, i, 0] = vec[i, 0]
         eig[e, i, 1] = vec[i, 1]
         eig[e, i, 2] = vec[i, 2]
     jac = vol / vol0
-    rho = mp[P_RHO] / jac
+    rho = rho0 / jac
     gtan = max(g0, gt)
     modulus = bulk + 4.0 / 3.0 * (gtan + gf)
     c = math.sqrt(modulus / rho)
@@ -307,7 +319,7 @@ def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, his
     d5 = 0.5 * (lm[2, 0] + lm[0, 2])
     trd = d0 + d1 + d2
     dm = trd * _THIRD
-    eta2 = 2.0 * mp[P_MU] * rho * mp[P_CS] * l
+    eta2 = 2.0 * mu_d * rho * cs * l
     p = bulk * (jac - 1.0)
     ij = 1.0 / jac
     n0 = t0 * ij + p + eta2 * (d0 - dm)
@@ -316,7 +328,7 @@ def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params, his
     n3 = t3 * ij + eta2 * d3
     n4 = t4 * ij + eta2 * d4
     n5 = t5 * ij + eta2 * d5
-    if gf > 0.0 and sigf > 0.0:
+    if use_fric:
         r0, r1, r2, r3, r4, r5 = _friction_step(e, rot, fric, dt * (d0 - dm), dt * (d1 - dm),
                                                 dt * (d2 - dm), dt * d3, dt * d4, dt * d5,
                                                 gf, sigf)

@@ -224,29 +224,38 @@ def rate_factor(mp, rx, ry, dxx: float, dyy: float, gxy: float) -> float:
     return 1.0
 
 
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def shell_constants(params):
+    """Kernel: the scalars of ``params`` the point update uses, read once per call.
+
+    Returns (E GPa, nu, kinematic modulus GPa, kinematic hardening on, rate
+    scaling on, failure strain).
+    """
+    mp = params[0]
+    return (mp[P_E], mp[P_NU], mp[P_HK], mp[P_HK] > 0.0,
+            mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0, mp[P_FAIL])
+
+
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH)
-def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, params, history):
+def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, consts, params, history):
     """Kernel: elastic-plastic update of point k of element i (rate, failure).
 
     s0..s2 old local stress (xx, yy, xy) GPa; exx, eyy, exy strain increments
     (engineering shear); dt ms; pm running max of eps_p over the element's
-    points; params (mp, hx, hy, rx, ry): packed parameters, hardening table,
-    rate curve; history (epsp (e, nip), back (e, nip, 3) or (1, 1, 3) without
-    kinematic hardening, pfail (e, nip) uint8), updated for (i, k). Returns
-    (q0, q1, q2 new stress GPa, plastic thickness strain increment, pm, 1 if
-    the point has failed else 0).
+    points; consts from :func:`shell_constants`; params (mp, hx, hy, rx, ry):
+    packed parameters, hardening table, rate curve; history (epsp (e, nip),
+    back (e, nip, 3) or (1, 1, 3) without kinematic hardening, pfail (e, nip)
+    uint8), updated for (i, k). Returns (q0, q1, q2 new stress GPa, plastic
+    thickness strain increment, pm, 1 if the point has failed else 0).
     """
     mp, hx, hy, rx, ry = params
     epsp, back, pfail = history
     if pfail[i, k] != 0:
         return 0.0, 0.0, 0.0, 0.0, pm, 1
-    e_mod = mp[P_E]
-    nu = mp[P_NU]
-    has_back = mp[P_HK] > 0.0
-    fail = mp[P_FAIL]
+    e_mod, nu, hk, has_back, rate_on, fail = consts
     dsp = 0.0
     rf = 1.0
-    if (mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0) and dt > 0.0:
+    if rate_on and dt > 0.0:
         rf = rate_factor(mp, rx, ry, exx / dt, eyy / dt, exy / dt)
     a0 = 0.0
     a1 = 0.0
@@ -265,7 +274,7 @@ def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, params, history)
     sy *= rf
     if x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * x2 * x2 > sy * sy * (1.0 + YIELD_TOL):
         q0, q1, q2, a0, a1, a2, epn, dsp = plane_stress_return(
-            s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, mp[P_HK], hx, hy, rf)
+            s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, hk, hx, hy, rf)
     if has_back:
         back[i, k, 0] = a0
         back[i, k, 1] = a1

@@ -37,15 +37,22 @@ def elastic_shell(mat: MaterialDef) -> PlaneStressMaterial:
 
 
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, params, history):
+def shell_constants(params):
+    """Kernel: the scalars of ``params`` the point update uses (E GPa, nu), read once."""
+    mp = params[0]
+    return mp[P_E], mp[P_NU]
+
+
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, consts, params, history):
     """Kernel: plane-stress elastic update of point k of element i.
 
     s0..s2 old local stress (xx, yy, xy) GPa; exx, eyy, exy strain increments
     (engineering shear); dt ms; pm running max of eps_p over the element's
-    points; params (mp, hx, hy, rx, ry); history (epsp, back, pfail), unused.
-    Returns (q0, q1, q2 new stress GPa, plastic thickness strain increment 0,
-    pm, 0 failed points).
+    points; consts from :func:`shell_constants`; params (mp, hx, hy, rx, ry);
+    history (epsp, back, pfail), unused. Returns (q0, q1, q2 new stress GPa,
+    plastic thickness strain increment 0, pm, 0 failed points).
     """
-    mp = params[0]
-    q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, mp[P_E], mp[P_NU])
+    e_mod, nu = consts
+    q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
     return q0, q1, q2, 0.0, pm, 0
