@@ -37,6 +37,7 @@ edit of either compiles the kernel anew).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from types import ModuleType
 
 import numpy as np
@@ -154,13 +155,14 @@ def _bulk_q(rho, l, c, trd, q1, q2):
     return 0.0
 
 
-_KERNELS: dict[str, object] = {}
+_KERNELS: dict[str, Callable[..., None]] = {}
 
 
-def make_hex8_kernel(law: ModuleType):
+def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
     """The hexahedron kernel of one solid law module (built once per law, then reused).
 
-    ``law`` provides ``solid_update`` (see :mod:`hollowbody.materials.solid_laws`).
+    ``law`` provides ``solid_constants`` and ``solid_update`` (see
+    :mod:`hollowbody.materials.solid_laws`).
     The returned kernel is called as ``kernel(x, v, dt, geom, state, params,
     history, hg, out)`` with
 

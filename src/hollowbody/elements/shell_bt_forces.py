@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Callable
 from types import ModuleType
 
 import numpy as np
@@ -436,14 +437,18 @@ CHUNK = 64
 PARALLEL_MIN = 512
 
 
-_KERNELS: dict[str, tuple] = {}
+_KERNELS: dict[str, tuple[Callable[..., None], Callable[..., None]]] = {}
 
 
-def make_shell_kernel(law: ModuleType) -> tuple:
+def make_shell_kernel(law: ModuleType) -> tuple[Callable[..., None], Callable[..., None]]:
     """(serial, parallel) shell kernels of one law module (built once per law).
 
+    ``law`` provides ``shell_constants`` and ``shell_point_update`` (see
+    :mod:`hollowbody.materials.shell_laws`).
+
     Both are called as ``kernel(x, v, w, dt, geom, state, params, history, kp,
-    out)`` (arguments as :func:`bt_shell_range`); the parallel one runs chunks
+    out)`` (arguments as :func:`bt_shell_range`; ``consts`` is computed once per
+    call from ``params``); the parallel one runs chunks
     of ``CHUNK`` elements over threads. They are closures over the law module,
     so ``law.shell_point_update`` is a compile-time constant, and are cached on
     disk (the cache key holds the module reference and a digest of this
@@ -480,8 +485,9 @@ def make_shell_kernel(law: ModuleType) -> tuple:
     return shell_serial, shell_parallel
 
 
-def bt_shell_forces(law: ModuleType, x, v, w, dt, geom, state, params, history, kp,
-                    out) -> None:
+def bt_shell_forces(law: ModuleType, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float,
+                    geom: tuple, state: tuple, params: tuple, history: tuple, kp: np.ndarray,
+                    out: tuple) -> None:
     """Every element of a group (arguments as :func:`bt_shell_range`) with the
     kernels of ``law``: chunks over threads for large groups, one serial call
     for small ones or with one thread."""

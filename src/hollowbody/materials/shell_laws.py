@@ -1,9 +1,10 @@
 """Registry of the shell (plane-stress) constitutive laws: ``PlaneStressMaterial.kind -> law``.
 
-A shell law is one module providing the ``@njit`` point update
-``shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, params, history)
--> (q0, q1, q2, dsp, pm, nfail)`` of integration point k of element i in the
-co-rotational frame (see :mod:`hollowbody.materials.shell_elastic`). ``params``
+A shell law is one module providing ``shell_constants(params) -> tuple`` (the
+scalars it needs, read once per kernel call) and the ``@njit`` point update
+``shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, consts, params,
+history) -> (q0, q1, q2, dsp, pm, nfail)`` of integration point k of element i
+in the co-rotational frame (see :mod:`hollowbody.materials.shell_elastic`). ``params``
 is ``(mp, hx, hy, rx, ry)``: the packed vector of
 :mod:`hollowbody.materials.plane_stress_plasticity` (the element reads E, nu,
 G and the wave speed from it for transverse shear, hourglass and time step),

@@ -11,8 +11,11 @@ A solid law is one module that provides
   tuple (the group runtime stores each one under its name and lists it in its
   ``STATE_FIELDS``);
 * ``solid_erode(history, idx)``: reset the history of eroded elements;
-* ``solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, params,
-  history) -> (s0..s5, rho, modulus, c)``: the ``@njit(inline="always")``
+* ``solid_constants(params) -> tuple``: the ``@njit(inline="always")`` read of
+  the scalar parameters, once per kernel call (loop-invariant values stay in
+  registers);
+* ``solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, consts,
+  params, history) -> (s0..s5, rho, modulus, c)``: the ``@njit(inline="always")``
   stress update of one element (see :mod:`hollowbody.materials.mat001_elastic`).
 
 The element loop (:func:`hollowbody.elements.hex8_solid_kernels.make_hex8_kernel`)
