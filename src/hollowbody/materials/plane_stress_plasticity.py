@@ -236,7 +236,7 @@ def shell_constants(params):
             mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0, mp[P_FAIL])
 
 
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
 def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, consts, params, history):
     """Kernel: elastic-plastic update of point k of element i (rate, failure).
 
