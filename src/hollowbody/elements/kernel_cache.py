@@ -31,7 +31,7 @@ def source_stamp(*modules: ModuleType) -> int:
             files.append(path)
             if m.__name__.startswith("hollowbody.materials."):
                 files.extend(sorted(path.parent.glob("*.py")))
-    digest = hashlib.sha256()
+    digest = hashlib.sha256("|".join(key).encode())
     for path in dict.fromkeys(files):
         digest.update(path.name.encode())
         digest.update(path.read_bytes())

@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import math
 import sys
+import types
 from collections.abc import Callable
 from types import ModuleType
 
@@ -70,10 +71,20 @@ from hollowbody.elements.shell_bt_kinematics import (
 )
 from hollowbody.materials.plane_stress_plasticity import (
     FASTMATH,
+    KIND_ELASTIC,
     P_C,
+    P_CS_C,
     P_E,
+    P_FAIL,
     P_G,
+    P_HK,
     P_NU,
+    P_RATE_CURVE,
+    YIELD_TOL,
+    elastic_plane_stress,
+    plane_stress_return,
+    rate_factor,
+    table_eval,
 )
 
 HG_NONE = -1
@@ -121,13 +132,20 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
     return out0, out1, out2, out3, out4, out5
 
 
-@njit(error_model="numpy", fastmath=FASTMATH)
-def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, consts, params, history, kp,
-                   out):
+#: The law module of an element loop built by :func:`make_shell_kernel` (each law's
+#: loop is compiled from :func:`bt_shell_range` with its own globals, where ``_law``
+#: is that law's module; ``_law.KIND`` is then a compile-time constant).
+_law: ModuleType | None = None
+#: The compiled element loop called by the kernel wrappers (set the same way).
+_range: Callable[..., None] | None = None
+
+
+def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
 
-    point_update: the law's ``shell_point_update`` (a compile-time constant of
-    the callers built by :func:`make_shell_kernel`). x (n,3) mm at t^{n+1};
+    The element loop of every shell law (Python source; :func:`make_shell_kernel`
+    compiles it once per law, with ``_law`` bound to the law's module, so only
+    the law's code path is compiled). x (n,3) mm at t^{n+1};
     v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
 
     geom = (conn (e,4) int32, tri (e,) bool triangle flags, t0 (e,) mm initial
@@ -142,8 +160,7 @@ def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, consts, param
     moments, nrm (e,3) unit normal of the last call).
 
     params = (mp packed material parameters, hx, hy hardening table, rx, ry
-    rate curve); consts: the law's ``shell_constants(params)`` (scalars read
-    once per call); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
+    rate curve); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
     kinematic hardening, pfail (e,nip) uint8): the law's, updated in place;
     kp (N_CONTROLS,) controls K_*.
 
@@ -158,17 +175,22 @@ def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, consts, param
     conn, tri, t0, mass_q, r2, area0, zeta, wts = geom
     alive, thick, ezz, sig, tau, hgq, drill, nrm = state
     fe, dte, die, dhe, stress_out, pmax, flip = out
-    mp = params[0]
+    mp, hx, hy, rx, ry = params
+    epsp, back, pfail = history
     nip = zeta.shape[0]
     shrf = kp[K_SHRF]
     hg_kind = int(kp[K_HG_KIND])
     qh = kp[K_QH]
     drill_k = kp[K_DRILL]
     update_thickness = kp[K_THICK_UPDATE] > 0.0
+    kind = _law.KIND
     e_mod = mp[P_E]
     nu = mp[P_NU]
     g_mod = mp[P_G]
     c_wave = mp[P_C]
+    has_back = mp[P_HK] > 0.0
+    rate_on = mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0
+    fail = mp[P_FAIL]
     hdt = 0.5 * dt
     for i in range(lo, hi):
         flip[i] = 0
@@ -227,9 +249,47 @@ def bt_shell_range(point_update, lo, hi, x, v, w, dt, geom, state, consts, param
             s0 = sig[i, k, 0]
             s1 = sig[i, k, 1]
             s2 = sig[i, k, 2]
-            q0, q1, q2, dsp, pm, nf = point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm,
-                                                   consts, params, history)
-            nfail += nf
+            # the law's point update (its code path is a compile-time constant)
+            dsp = 0.0
+            if kind == KIND_ELASTIC:
+                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+            elif pfail[i, k] != 0:
+                q0 = 0.0
+                q1 = 0.0
+                q2 = 0.0
+                nfail += 1
+            else:
+                rf = 1.0
+                if rate_on and dt > 0.0:
+                    rf = rate_factor(mp, rx, ry, exx / dt, eyy / dt, exy / dt)
+                a0 = 0.0
+                a1 = 0.0
+                a2 = 0.0
+                if has_back:
+                    a0 = back[i, k, 0]
+                    a1 = back[i, k, 1]
+                    a2 = back[i, k, 2]
+                epn = epsp[i, k]
+                # elastic trial and yield check here; the return mapping only when needed
+                q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+                x0 = q0 - a0
+                x1 = q1 - a1
+                x2 = q2 - a2
+                sy, _ = table_eval(epn, hx, hy)
+                sy *= rf
+                if x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * x2 * x2 > sy * sy * (1.0 + YIELD_TOL):
+                    q0, q1, q2, a0, a1, a2, epn, dsp = plane_stress_return(
+                        s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, mp[P_HK], hx,
+                        hy, rf)
+                if has_back:
+                    back[i, k, 0] = a0
+                    back[i, k, 1] = a1
+                    back[i, k, 2] = a2
+                epsp[i, k] = epn
+                pm = max(pm, epn)
+                if fail > 0.0 and epn >= fail:
+                    pfail[i, k] = 1
+                    nfail += 1
             sig[i, k, 0] = q0
             sig[i, k, 1] = q1
             sig[i, k, 2] = q2
@@ -440,49 +500,62 @@ PARALLEL_MIN = 512
 _KERNELS: dict[str, tuple[Callable[..., None], Callable[..., None]]] = {}
 
 
+def _wrappers(stamp: int) -> tuple[Callable[..., None], Callable[..., None]]:
+    """Python sources of the serial and the threaded kernel (closures over ``stamp``)."""
+
+    def shell_serial(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never: the digest only keys the on-disk cache
+            return
+        _range(0, geom[0].shape[0], x, v, w, dt, geom, state, params, history, kp, out)
+
+    def shell_parallel(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never
+            return
+        ne = geom[0].shape[0]
+        nchunk = (ne + CHUNK - 1) // CHUNK
+        for c in prange(nchunk):
+            _range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, geom, state, params,
+                   history, kp, out)
+
+    return shell_serial, shell_parallel
+
+
+def _with_globals(fn, **names):
+    """A copy of function ``fn`` that sees ``names`` as module globals."""
+    g = types.FunctionType(fn.__code__, {**fn.__globals__, **names}, fn.__name__,
+                           fn.__defaults__, fn.__closure__)
+    g.__qualname__ = fn.__qualname__
+    g.__doc__ = fn.__doc__
+    return g
+
+
 def make_shell_kernel(law: ModuleType) -> tuple[Callable[..., None], Callable[..., None]]:
     """(serial, parallel) shell kernels of one law module (built once per law).
 
-    ``law`` provides ``shell_constants`` and ``shell_point_update`` (see
-    :mod:`hollowbody.materials.shell_laws`).
-
-    Both are called as ``kernel(x, v, w, dt, geom, state, params, history, kp,
-    out)`` (arguments as :func:`bt_shell_range`; ``consts`` is computed once per
-    call from ``params``); the parallel one runs chunks
-    of ``CHUNK`` elements over threads. They are closures over the law module,
-    so ``law.shell_point_update`` is a compile-time constant, and are cached on
-    disk (the cache key holds the module reference and a digest of this
-    module's, the kinematics' and the law package's sources, see kernel_cache).
+    ``law`` provides ``KIND`` (see :mod:`hollowbody.materials.shell_laws`).
+    Both kernels are called as
+    ``kernel(x, v, w, dt, geom, state, params, history, kp, out)`` (arguments
+    as :func:`bt_shell_range`); the parallel one runs chunks of ``CHUNK``
+    elements over threads. The element loop is compiled from
+    :func:`bt_shell_range` with ``_law`` bound to ``law`` (its ``KIND`` is a
+    compile-time constant); the two kernels call it and are
+    cached on disk: their cache key holds a digest of this module's, the
+    kinematics' and the law package's sources (see kernel_cache), which tells
+    the laws apart and compiles them anew after an edit. The loop itself is
+    not cached separately (it is part of both kernels' compiled code).
     """
     key = law.__name__
     kernels = _KERNELS.get(key)
     if kernels is not None:
         return kernels
-    # digest of the element loop's, its helpers' and the law's sources: the element
-    # loop is compiled into these closures, whose cache key holds the digest
     stamp = source_stamp(law, sys.modules[__name__], shell_bt_kinematics)
-
-    @njit(cache=True)
-    def shell_serial(x, v, w, dt, geom, state, params, history, kp, out):
-        if stamp < 0:  # never
-            return
-        consts = law.shell_constants(params)
-        bt_shell_range(law.shell_point_update, 0, geom[0].shape[0], x, v, w, dt, geom, state,
-                       consts, params, history, kp, out)
-
-    @njit(cache=True, parallel=True)
-    def shell_parallel(x, v, w, dt, geom, state, params, history, kp, out):
-        if stamp < 0:  # never
-            return
-        consts = law.shell_constants(params)
-        ne = geom[0].shape[0]
-        nchunk = (ne + CHUNK - 1) // CHUNK
-        for c in prange(nchunk):
-            bt_shell_range(law.shell_point_update, c * CHUNK, min(ne, (c + 1) * CHUNK), x, v,
-                           w, dt, geom, state, consts, params, history, kp, out)
-
-    _KERNELS[key] = (shell_serial, shell_parallel)
-    return shell_serial, shell_parallel
+    loop = njit(error_model="numpy", fastmath=FASTMATH)(_with_globals(bt_shell_range, _law=law))
+    serial_py, parallel_py = _wrappers(stamp)
+    serial = njit(cache=True, error_model="numpy", fastmath=FASTMATH)(
+        _with_globals(serial_py, _range=loop))
+    parallel = njit(cache=True, parallel=True)(_with_globals(parallel_py, _range=loop))
+    _KERNELS[key] = (serial, parallel)
+    return serial, parallel
 
 
 def bt_shell_forces(law: ModuleType, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float,

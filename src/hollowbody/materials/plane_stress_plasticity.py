@@ -30,9 +30,8 @@ factor computed by the caller (Cowper-Symonds or a curve).
 
 Everything here is ``@njit`` and allocation-free: kernels call it per point.
 
-Shell law interface (see :mod:`hollowbody.materials.shell_laws`): the point
-update :func:`shell_point_update` of the elastic-plastic law (``KIND_PLASTIC``:
-*MAT_PLASTIC_KINEMATIC and *MAT_PIECEWISE_LINEAR_PLASTICITY).
+Shell law ``KIND_PLASTIC`` (*MAT_PLASTIC_KINEMATIC and
+*MAT_PIECEWISE_LINEAR_PLASTICITY; see :mod:`hollowbody.materials.shell_laws`).
 """
 
 from __future__ import annotations
@@ -65,6 +64,8 @@ N_PARAMS = 11
 
 KIND_ELASTIC = 0
 KIND_PLASTIC = 1
+#: Shell law kind of this module (``PlaneStressMaterial.kind``).
+KIND = KIND_PLASTIC
 
 #: Relative tolerance of the consistency condition (also the elastic check).
 YIELD_TOL = 1.0e-11
@@ -223,65 +224,3 @@ def rate_factor(mp, rx, ry, dxx: float, dyy: float, gxy: float) -> float:
         return v
     return 1.0
 
-
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def shell_constants(params):
-    """Kernel: the scalars of ``params`` the point update uses, read once per call.
-
-    Returns (E GPa, nu, kinematic modulus GPa, kinematic hardening on, rate
-    scaling on, failure strain).
-    """
-    mp = params[0]
-    return (mp[P_E], mp[P_NU], mp[P_HK], mp[P_HK] > 0.0,
-            mp[P_CS_C] > 0.0 or mp[P_RATE_CURVE] > 0.0, mp[P_FAIL])
-
-
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def shell_point_update(i, k, s0, s1, s2, exx, eyy, exy, dt, pm, consts, params, history):
-    """Kernel: elastic-plastic update of point k of element i (rate, failure).
-
-    s0..s2 old local stress (xx, yy, xy) GPa; exx, eyy, exy strain increments
-    (engineering shear); dt ms; pm running max of eps_p over the element's
-    points; consts from :func:`shell_constants`; params (mp, hx, hy, rx, ry):
-    packed parameters, hardening table, rate curve; history (epsp (e, nip),
-    back (e, nip, 3) or (1, 1, 3) without kinematic hardening, pfail (e, nip)
-    uint8), updated for (i, k). Returns (q0, q1, q2 new stress GPa, plastic
-    thickness strain increment, pm, 1 if the point has failed else 0).
-    """
-    mp, hx, hy, rx, ry = params
-    epsp, back, pfail = history
-    if pfail[i, k] != 0:
-        return 0.0, 0.0, 0.0, 0.0, pm, 1
-    e_mod, nu, hk, has_back, rate_on, fail = consts
-    dsp = 0.0
-    rf = 1.0
-    if rate_on and dt > 0.0:
-        rf = rate_factor(mp, rx, ry, exx / dt, eyy / dt, exy / dt)
-    a0 = 0.0
-    a1 = 0.0
-    a2 = 0.0
-    if has_back:
-        a0 = back[i, k, 0]
-        a1 = back[i, k, 1]
-        a2 = back[i, k, 2]
-    epn = epsp[i, k]
-    # elastic trial and yield check here; the return mapping only when needed
-    q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
-    x0 = q0 - a0
-    x1 = q1 - a1
-    x2 = q2 - a2
-    sy, _ = table_eval(epn, hx, hy)
-    sy *= rf
-    if x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * x2 * x2 > sy * sy * (1.0 + YIELD_TOL):
-        q0, q1, q2, a0, a1, a2, epn, dsp = plane_stress_return(
-            s0, s1, s2, a0, a1, a2, epn, exx, eyy, exy, e_mod, nu, hk, hx, hy, rf)
-    if has_back:
-        back[i, k, 0] = a0
-        back[i, k, 1] = a1
-        back[i, k, 2] = a2
-    epsp[i, k] = epn
-    nf = 0
-    if fail > 0.0 and epn >= fail:
-        pfail[i, k] = 1
-        nf = 1
-    return q0, q1, q2, dsp, max(pm, epn), nf
