@@ -51,10 +51,16 @@ element (power-consistent; zero for rigid motion).
 from __future__ import annotations
 
 import math
+import sys
+import types
+from collections.abc import Callable
+from types import ModuleType
 
 import numpy as np
 from numba import get_num_threads, njit, prange
 
+from hollowbody.elements import shell_bt_kinematics
+from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.shell_bt_kinematics import (
     bt_bmatrix,
     bt_geometry,
@@ -72,7 +78,6 @@ from hollowbody.materials.plane_stress_plasticity import (
     P_FAIL,
     P_G,
     P_HK,
-    P_KIND,
     P_NU,
     P_RATE_CURVE,
     YIELD_TOL,
@@ -127,39 +132,58 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
     return out0, out1, out2, out3, out4, out5
 
 
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH)
-def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta,
-                   wts, kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte,
-                   die, dhe, stress_out, pmax, nrm, area0, flip):
+#: The law module of an element loop built by :func:`make_shell_kernel` (each law's
+#: loop is compiled from :func:`bt_shell_range` with its own globals, where ``_law``
+#: is that law's module; ``_law.KIND`` is then a compile-time constant).
+_law: ModuleType | None = None
+#: The compiled element loop called by the kernel wrappers (set the same way).
+_range: Callable[..., None] | None = None
+
+
+def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     """Stresses, nodal forces/moments and time steps of elements ``lo <= i < hi``.
 
-    x (n,3) mm at t^{n+1}; v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
-    conn (e,4) int32; alive (e,) bool (set False here when every point failed);
-    tri (e,) bool triangle flags; thick (e,) mm thickness used (updated when
-    ``update_thickness``); t0 (e,) mm initial thickness; ezz (e,) accumulated
-    thickness log strain; mass_q (e,) kg nodal mass share; r2 (e,) mm^2
-    rotational inertia radius^2; zeta, wts (nip,) rule on [-1, 1]; shrf shear
-    factor; mp packed material parameters; hx, hy hardening table; rx, ry
-    rate curve. State, updated in place: sig (e,nip,3) local in-plane stress
-    GPa; epsp (e,nip); back (e,nip,3) or (1,1,3) when no kinematic hardening;
-    pfail (e,nip) uint8; tau (e,2) GPa transverse shear (xz, yz); hgq (e,5)
-    stiffness-hourglass generalized forces; drill (e,4) kN*mm drilling moments.
-    Outputs: fe (e,4,6) kN, kN*mm forces and moments on the element's nodes;
-    dte (e,) ms critical steps (inf for dead elements); die, dhe (e,) J energy
-    increments; stress_out (e,6) GPa global; pmax (e,) max eps_p over points.
-    nrm (e,3) unit normal of the last call (in/out); area0 (e,) mm^2 initial
-    areas; flip (e,) uint8 out: 1 when the element collapsed in its own plane:
-    its area fell below ``COLLAPSED_AREA`` x its initial area, or its normal
-    turned by more than 90 degrees in one step (crushed through zero area,
-    inside out; the stored normal is then kept). The solver stops or erodes it.
+    The element loop of every shell law (Python source; :func:`make_shell_kernel`
+    compiles it once per law, with ``_law`` bound to the law's module, so only
+    the law's code path is compiled). x (n,3) mm at t^{n+1};
+    v (n,3) mm/ms and w (n,3) rad/ms at t^{n+1/2}; dt ms.
+
+    geom = (conn (e,4) int32, tri (e,) bool triangle flags, t0 (e,) mm initial
+    thickness, mass_q (e,) kg nodal mass share, r2 (e,) mm^2 rotational inertia
+    radius^2, area0 (e,) mm^2 initial areas, zeta, wts (nip,) rule on [-1, 1]).
+
+    state, updated in place = (alive (e,) bool (set False here when every point
+    failed), thick (e,) mm thickness used (updated when ``update_thickness``),
+    ezz (e,) accumulated thickness log strain, sig (e,nip,3) local in-plane
+    stress GPa, tau (e,2) GPa transverse shear (xz, yz), hgq (e,5)
+    stiffness-hourglass generalized forces, drill (e,4) kN*mm drilling
+    moments, nrm (e,3) unit normal of the last call).
+
+    params = (mp packed material parameters, hx, hy hardening table, rx, ry
+    rate curve); history = (epsp (e,nip), back (e,nip,3) or (1,1,3) when no
+    kinematic hardening, pfail (e,nip) uint8): the law's, updated in place;
+    kp (N_CONTROLS,) controls K_*.
+
+    out = (fe (e,4,6) kN, kN*mm forces and moments on the element's nodes,
+    dte (e,) ms critical steps (inf for dead elements), die, dhe (e,) J energy
+    increments, stress_out (e,6) GPa global, pmax (e,) max eps_p over points,
+    flip (e,) uint8: 1 when the element collapsed in its own plane: its area
+    fell below ``COLLAPSED_AREA`` x its initial area, or its normal turned by
+    more than 90 degrees in one step (crushed through zero area, inside out;
+    the stored normal is then kept). The solver stops or erodes it).
     """
+    conn, tri, t0, mass_q, r2, area0, zeta, wts = geom
+    alive, thick, ezz, sig, tau, hgq, drill, nrm = state
+    fe, dte, die, dhe, stress_out, pmax, flip = out
+    mp, hx, hy, rx, ry = params
+    epsp, back, pfail = history
     nip = zeta.shape[0]
     shrf = kp[K_SHRF]
     hg_kind = int(kp[K_HG_KIND])
     qh = kp[K_QH]
     drill_k = kp[K_DRILL]
     update_thickness = kp[K_THICK_UPDATE] > 0.0
-    kind = int(mp[P_KIND])
+    kind = _law.KIND
     e_mod = mp[P_E]
     nu = mp[P_NU]
     g_mod = mp[P_G]
@@ -225,6 +249,7 @@ def bt_shell_range(lo, hi, x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q
             s0 = sig[i, k, 0]
             s1 = sig[i, k, 1]
             s2 = sig[i, k, 2]
+            # the law's point update (its code path is a compile-time constant)
             dsp = 0.0
             if kind == KIND_ELASTIC:
                 q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
@@ -472,28 +497,75 @@ CHUNK = 64
 PARALLEL_MIN = 512
 
 
-@njit(cache=True, parallel=True)
-def _bt_shell_parallel(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts,
-                       kp, mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe,
-                       dte, die, dhe, stress_out, pmax, nrm, area0, flip):
-    ne = conn.shape[0]
-    nchunk = (ne + CHUNK - 1) // CHUNK
-    for c in prange(nchunk):
-        bt_shell_range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, conn, alive, tri,
-                       thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx, hy, rx, ry, sig,
-                       epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out, pmax,
-                       nrm, area0, flip)
+_KERNELS: dict[str, tuple[Callable[..., None], Callable[..., None]]] = {}
 
 
-def bt_shell_forces(x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp,
-                    mp, hx, hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die,
-                    dhe, stress_out, pmax, nrm, area0, flip) -> None:
-    """Every element of a group (arguments as :func:`bt_shell_range`): chunks over
-    threads for large groups, one serial call for small ones or with one thread."""
-    args = (x, v, w, dt, conn, alive, tri, thick, t0, ezz, mass_q, r2, zeta, wts, kp, mp, hx,
-            hy, rx, ry, sig, epsp, back, pfail, tau, hgq, drill, fe, dte, die, dhe, stress_out,
-            pmax, nrm, area0, flip)
-    if conn.shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
-        _bt_shell_parallel(*args)
+def _wrappers(stamp: int) -> tuple[Callable[..., None], Callable[..., None]]:
+    """Python sources of the serial and the threaded kernel (closures over ``stamp``)."""
+
+    def shell_serial(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never: the digest only keys the on-disk cache
+            return
+        _range(0, geom[0].shape[0], x, v, w, dt, geom, state, params, history, kp, out)
+
+    def shell_parallel(x, v, w, dt, geom, state, params, history, kp, out):
+        if stamp < 0:  # never
+            return
+        ne = geom[0].shape[0]
+        nchunk = (ne + CHUNK - 1) // CHUNK
+        for c in prange(nchunk):
+            _range(c * CHUNK, min(ne, (c + 1) * CHUNK), x, v, w, dt, geom, state, params,
+                   history, kp, out)
+
+    return shell_serial, shell_parallel
+
+
+def _with_globals(fn, **names):
+    """A copy of function ``fn`` that sees ``names`` as module globals."""
+    g = types.FunctionType(fn.__code__, {**fn.__globals__, **names}, fn.__name__,
+                           fn.__defaults__, fn.__closure__)
+    g.__qualname__ = fn.__qualname__
+    g.__doc__ = fn.__doc__
+    return g
+
+
+def make_shell_kernel(law: ModuleType) -> tuple[Callable[..., None], Callable[..., None]]:
+    """(serial, parallel) shell kernels of one law module (built once per law).
+
+    ``law`` provides ``KIND`` (see :mod:`hollowbody.materials.shell_laws`).
+    Both kernels are called as
+    ``kernel(x, v, w, dt, geom, state, params, history, kp, out)`` (arguments
+    as :func:`bt_shell_range`); the parallel one runs chunks of ``CHUNK``
+    elements over threads. The element loop is compiled from
+    :func:`bt_shell_range` with ``_law`` bound to ``law`` (its ``KIND`` is a
+    compile-time constant); the two kernels call it and are
+    cached on disk: their cache key holds a digest of this module's, the
+    kinematics' and the law package's sources (see kernel_cache), which tells
+    the laws apart and compiles them anew after an edit. The loop itself is
+    not cached separately (it is part of both kernels' compiled code).
+    """
+    key = law.__name__
+    kernels = _KERNELS.get(key)
+    if kernels is not None:
+        return kernels
+    stamp = source_stamp(law, sys.modules[__name__], shell_bt_kinematics)
+    loop = njit(error_model="numpy", fastmath=FASTMATH)(_with_globals(bt_shell_range, _law=law))
+    serial_py, parallel_py = _wrappers(stamp)
+    serial = njit(cache=True, error_model="numpy", fastmath=FASTMATH)(
+        _with_globals(serial_py, _range=loop))
+    parallel = njit(cache=True, parallel=True)(_with_globals(parallel_py, _range=loop))
+    _KERNELS[key] = (serial, parallel)
+    return serial, parallel
+
+
+def bt_shell_forces(law: ModuleType, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float,
+                    geom: tuple, state: tuple, params: tuple, history: tuple, kp: np.ndarray,
+                    out: tuple) -> None:
+    """Every element of a group (arguments as :func:`bt_shell_range`) with the
+    kernels of ``law``: chunks over threads for large groups, one serial call
+    for small ones or with one thread."""
+    serial, parallel = make_shell_kernel(law)
+    if geom[0].shape[0] >= PARALLEL_MIN and get_num_threads() > 1:
+        parallel(x, v, w, dt, geom, state, params, history, kp, out)
     else:
-        bt_shell_range(0, conn.shape[0], *args)
+        serial(x, v, w, dt, geom, state, params, history, kp, out)

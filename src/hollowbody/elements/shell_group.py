@@ -49,6 +49,7 @@ from hollowbody.elements.shell_gather import gather_node_forces, node_gather_map
 from hollowbody.elements.shell_thickness_rules import through_thickness_rule
 from hollowbody.errors import DeckError
 from hollowbody.materials.plane_stress_material import PlaneStressMaterial, shell_material
+from hollowbody.materials.shell_laws import SHELL_LAWS
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SectionDef, ShellGroup
 
 DEFAULT_SHRF = 5.0 / 6.0
@@ -83,6 +84,14 @@ class ShellGroupRuntime:
     """
 
     rotational = True
+    #: Attributes that change in time (saved and restored by a restart): arrays
+    #: are restored in place, the floats and the ``failed`` list by assignment.
+    #: ``flip`` and ``_dte`` (``inverted``, ``dt_elem``) are the last call's
+    #: results the solver reads between calls.
+    STATE_FIELDS: tuple[str, ...] = (
+        "alive", "thickness", "thickness_strain", "sig", "epsp", "back", "pfail", "tau",
+        "hgq", "drill", "stress", "plastic_strain", "normal", "flip", "_dte",
+        "internal_energy", "hourglass_energy", "failed")
 
     def __init__(self, group: ShellGroup, material: MaterialDef, section: SectionDef,
                  hourglass: HourglassDef, curves: dict[int, Curve], node_x0: np.ndarray,
@@ -138,6 +147,7 @@ class ShellGroupRuntime:
                 self.warnings.append(f"part {self.pid}: hourglass IHQ {ihq} runs as the "
                                      "Belytschko-Tsay viscous form for shells")
         self.params = self.material.params()
+        self._law = SHELL_LAWS[self.material.kind]
         self.hard_x = np.ascontiguousarray(self.material.hard_x, dtype=np.float64)
         self.hard_y = np.ascontiguousarray(self.material.hard_y, dtype=np.float64)
         self.rate_x = np.ascontiguousarray(self.material.rate_x, dtype=np.float64)
@@ -223,13 +233,15 @@ class ShellGroupRuntime:
         with_moment = moment is not None
         mom = moment if with_moment else self._mzero
         n_alive_before = int(self.alive.sum()) if self.material.fail > 0.0 else 0
-        bt_shell_forces(x, v, w, float(dt), self.conn, self.alive, self.triangle,
-                        self.thickness, self.t0, self.thickness_strain, self.mass_q, self.r2,
-                        self.zeta, self.weights, self._controls, self.params, self.hard_x,
-                        self.hard_y, self.rate_x, self.rate_y, self.sig, self.epsp, self.back,
-                        self.pfail, self.tau, self.hgq, self.drill, self._fe, self._dte,
-                        self._die, self._dhe, self.stress, self.plastic_strain, self.normal,
-                        self.area0, self.flip)
+        geom = (self.conn, self.triangle, self.t0, self.mass_q, self.r2, self.area0,
+                self.zeta, self.weights)
+        state = (self.alive, self.thickness, self.thickness_strain, self.sig, self.tau,
+                 self.hgq, self.drill, self.normal)
+        params = (self.params, self.hard_x, self.hard_y, self.rate_x, self.rate_y)
+        out = (self._fe, self._dte, self._die, self._dhe, self.stress, self.plastic_strain,
+               self.flip)
+        bt_shell_forces(self._law, x, v, w, float(dt), geom, state, params,
+                        (self.epsp, self.back, self.pfail), self._controls, out)
         gather_node_forces(self._fe, self._nodes, self._ptr, self._ref, f, mom, with_moment)
         self.internal_energy += float(self._die.sum())
         self.hourglass_energy += float(self._dhe.sum())

@@ -6,8 +6,9 @@ history, energies) and the work arrays of its kernels (allocated once).
 Formulation: 8-node one-point hexahedron (ELFORM 1) with Flanagan-Belytschko
 hourglass control and LS-DYNA bulk viscosity; degenerate wedges and
 tetrahedra run through the same kernel (see docs/elements.md).
-Materials: *MAT_ELASTIC (``kind == "elastic"``) and *MAT_SIMPLIFIED_RUBBER
-(``kind == "rubber181"``).
+Materials: the laws of :data:`hollowbody.materials.solid_laws.SOLID_LAWS`
+(*MAT_ELASTIC ``"elastic"``, *MAT_SIMPLIFIED_RUBBER ``"rubber181"``); one
+element kernel per law (:func:`~hollowbody.elements.hex8_solid_kernels.make_hex8_kernel`).
 
 Energies (J, cumulative): ``internal_energy + hourglass_energy`` is the work
 of the group's nodal forces, accounted exactly as the central-difference
@@ -31,11 +32,10 @@ from hollowbody.elements.hex8_kinematics import (
     canonical_connectivity,
     hex8_gradients,
 )
-from hollowbody.elements.hex8_solid_kernels import hex8_elastic_kernel, hex8_rubber_kernel
+from hollowbody.elements.hex8_solid_kernels import make_hex8_kernel
 from hollowbody.elements.time_step import element_time_steps
 from hollowbody.errors import DeckError
-from hollowbody.materials import mat001_elastic as m001
-from hollowbody.materials import mat181_simplified_rubber as m181
+from hollowbody.materials.solid_laws import HISTORY_FIELDS, SOLID_LAWS
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 
 #: Elements per chunk of the parallel element loop.
@@ -59,8 +59,17 @@ class SolidGroupRuntime:
     bulk-viscosity pressure); volume0, volume (e,) mm^3 initial / current;
     mass (e,) kg = density * volume0; dt_elem (e,) ms critical step of the last
     call (unscaled, inf for dead elements); internal_energy, hourglass_energy
-    J cumulative (see module docstring).
+    J cumulative (see module docstring). The law's history arrays are
+    attributes named as in its ``HISTORY_FIELDS`` (those of the other laws
+    are empty arrays).
     """
+
+    #: Attributes that change in time (saved and restored by a restart):
+    #: arrays are restored in place, floats by assignment. ``_fwork`` holds the
+    #: element forces f^n, read by the next call (energy of the step).
+    STATE_FIELDS: tuple[str, ...] = (
+        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_fwork",
+        "internal_energy", "hourglass_energy") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
                  curves: dict[int, Curve], node_x0: np.ndarray) -> None:
@@ -87,23 +96,18 @@ class SolidGroupRuntime:
         self.hourglass_energy = 0.0
         self._lfac = np.where(self.shape == SHAPE_TET, 3.0, 1.0)
 
-        if self.kind == "elastic":
-            self._mp = m001.elastic_params(material)
-            c0 = float(self._mp[m001.P_C])
-            self._table = None
-        elif self.kind == "rubber181":
-            self._mp, self._table = m181.rubber_params(material, curves)
-            c0 = m181.rubber_wave_speed0(self._mp)
-        else:
+        law = SOLID_LAWS.get(self.kind)
+        if law is None:
             raise DeckError(f"material {material.mid} ({material.keyword or material.kind}) "
                             "is not available for solid elements", material.source.file,
                             material.source.line, material.keyword or None)
-        use_fric = (self.kind == "rubber181" and self._mp[m181.P_GF] > 0.0
-                    and self._mp[m181.P_SIGF] > 0.0)
-        self._fric = np.zeros((e if use_fric else 1, 6))
-        # eigenvectors of F F^T per element (warm start of the MAT_181 eigen-solver)
-        self._eig = np.zeros((e if self.kind == "rubber181" else 1, 3, 3))
-        self._eig[:, [0, 1, 2], [0, 1, 2]] = 1.0
+        self._law = law
+        self._params = law.solid_params(material, curves)
+        c0 = law.solid_wave_speed0(self._params)
+        history = law.solid_history(self._params, e)
+        for name in HISTORY_FIELDS:
+            setattr(self, name, history.get(name, np.zeros(0)))
+        self._kernel = make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
         if ihq > 5:
@@ -143,17 +147,12 @@ class SolidGroupRuntime:
         # dynamic scheduling of the chunks: the cost per element varies in space
         # (contact zone, eigen-solver sweeps), a static split leaves threads idle
         old_chunk = numba.set_parallel_chunksize(1)
-        if self.kind == "elastic":
-            hex8_elastic_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
-                                self.stress, self.volume, self.volume0, self._hgstate,
-                                self._fwork, self.dt_elem, self._c, self._mp, self._hg,
-                                self._bounds, out)
-        else:
-            tab = self._table
-            hex8_rubber_kernel(self._conn_k, x, v, float(dt), self.alive, self._lfac,
-                               self.stress, self.volume, self.volume0, self._hgstate,
-                               self._fwork, self.dt_elem, self._c, self._b0, self._fric,
-                               self._eig, self._mp, tab.f, tab.g, self._hg, self._bounds, out)
+        # argument groups built per call, so a rebound attribute is always the one used
+        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds)
+        state = (self.alive, self.stress, self.volume, self._hgstate, self._fwork,
+                 self.dt_elem, self._c)
+        history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
+        self._kernel(x, v, float(dt), geom, state, self._params, history, self._hg, out)
         numba.set_parallel_chunksize(old_chunk)
         if self._gather is not None and numba.get_num_threads() > 1:
             self._gather.add(self._fwork, f)
@@ -174,8 +173,7 @@ class SolidGroupRuntime:
         self.alive[idx] = False
         self.stress[idx] = 0.0
         self._hgstate[idx] = 0.0
-        if self._fric.shape[0] == self.n_elem:
-            self._fric[idx] = 0.0
+        self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), idx)
         self.dt_elem[idx] = np.inf
 
     def wave_speed(self) -> np.ndarray:

@@ -8,6 +8,10 @@ Objective stress rate with the Hughes-Winget incremental rotation ``Q``
 Wave speed ``c = sqrt((K + 4G/3) / rho)``. Units: GPa, kg/mm^3, mm/ms.
 Parameters are packed into a float64 vector (indices ``P_*``) so the element
 kernels take plain arrays.
+
+Solid law interface (see :mod:`hollowbody.materials.solid_laws`):
+:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_history`,
+:func:`solid_erode` and the kernel :func:`solid_update`. No history.
 """
 
 from __future__ import annotations
@@ -17,11 +21,18 @@ import math
 import numpy as np
 from numba import njit
 
+from hollowbody.elements.hex8_kinematics import rotate_sym
 from hollowbody.errors import DeckError
-from hollowbody.model.model import MaterialDef
+from hollowbody.model.model import Curve, MaterialDef
 
 P_LAMBDA, P_MU, P_BULK, P_RHO, P_C = range(5)
 N_PARAMS = 5
+
+#: Material kind of the law (``MaterialDef.kind``) and its keyword.
+KIND = "elastic"
+KEYWORD = "MAT_ELASTIC"
+#: Names of the per-element history arrays (:func:`solid_history`): none.
+HISTORY_FIELDS: tuple[str, ...] = ()
 
 
 def elastic_params(mat: MaterialDef) -> np.ndarray:
@@ -75,3 +86,62 @@ def elastic_stress_update(stress: np.ndarray, de: np.ndarray, params: np.ndarray
     out = stress + 2.0 * mu * de
     out[:, :3] += lam * de[:, :3].sum(axis=1, keepdims=True)
     return out
+
+
+# -- solid law interface --------------------------------------------------------------
+def solid_params(mat: MaterialDef, curves: dict[int, Curve]) -> tuple[np.ndarray, ...]:
+    """Parameter tuple of the solid kernel: ``(elastic_params(mat),)`` (DeckError if invalid)."""
+    return (elastic_params(mat),)
+
+
+def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
+    """Initial dilatational wave speed (mm/ms) sqrt((K + 4G/3) / rho)."""
+    return float(params[0][P_C])
+
+
+def solid_history(params: tuple[np.ndarray, ...], n_elem: int) -> dict[str, np.ndarray]:
+    """Per-element history arrays by name (:data:`HISTORY_FIELDS`): none."""
+    return {}
+
+
+def solid_erode(history: tuple[np.ndarray, ...], idx: np.ndarray) -> None:
+    """Reset the history of eroded elements ``idx``: nothing to reset."""
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_constants(params):
+    """Kernel: the scalars of ``params`` the update uses, read once per call.
+
+    Returns (lambda, mu GPa, rho0 kg/mm^3, c mm/ms, lambda + 2 mu GPa).
+    """
+    mp = params[0]
+    lam = mp[P_LAMBDA]
+    mu = mp[P_MU]
+    return lam, mu, mp[P_RHO], mp[P_C], lam + 2.0 * mu
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, consts, params, history):
+    """Kernel: new stress of element ``e`` (hypoelastic, Hughes-Winget rotation).
+
+    dt ms; vol, vol0 current / initial volume mm^3; l = vol^(1/3) mm; xe (8, 3)
+    mm nodal positions relative to node 1; b0 (e, 8, 3) reference gradients;
+    lm (3, 3) 1/ms mid-step velocity gradient; rot (3, 3) incremental rotation;
+    work (3, 3) scratch; stress (e, 6) GPa old stress (read only); consts from
+    :func:`solid_constants`; params ``(mp,)``; history ``()``. Returns (s0..s5
+    GPa new stress, rho kg/mm^3 current density, modulus GPa for the hourglass
+    stiffness, c mm/ms wave speed).
+    """
+    lam, mu, rho0, c, modulus = consts
+    d0 = dt * lm[0, 0]
+    d1 = dt * lm[1, 1]
+    d2 = dt * lm[2, 2]
+    d3 = 0.5 * dt * (lm[0, 1] + lm[1, 0])
+    d4 = 0.5 * dt * (lm[1, 2] + lm[2, 1])
+    d5 = 0.5 * dt * (lm[2, 0] + lm[0, 2])
+    r0, r1, r2, r3, r4, r5 = rotate_sym(rot, stress[e, 0], stress[e, 1], stress[e, 2],
+                                        stress[e, 3], stress[e, 4], stress[e, 5])
+    n0, n1, n2, n3, n4, n5 = elastic_update(r0, r1, r2, r3, r4, r5,
+                                            d0, d1, d2, d3, d4, d5, lam, mu)
+    rho = rho0 * vol0 / vol
+    return n0, n1, n2, n3, n4, n5, rho, modulus, c

@@ -27,6 +27,13 @@ Wave speed (time step, hourglass): ``c = sqrt((KM + 4/3 (G_t + G)) / rho)``
 with ``G_t = max(G0, g(l_i))`` the larger of the initial shear modulus
 ``G0 = E0 / 3`` and the current tangent of the tabulated law, so stiffening
 rubber keeps a stable step. Units: GPa, kg/mm^3, mm/ms.
+
+Solid law interface (see :mod:`hollowbody.materials.solid_laws`):
+:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_history`,
+:func:`solid_erode` and the kernel :func:`solid_update`. History: the
+frictional stress ``_fric`` (e, 6) GPa ((1, 6) when friction is off) and the
+eigenvectors ``_eig`` (e, 3, 3) of F F^T of the last call (warm start of the
+eigen-solver).
 """
 
 from __future__ import annotations
@@ -37,6 +44,7 @@ import warnings
 import numpy as np
 from numba import njit
 
+from hollowbody.elements.hex8_kinematics import rotate_sym
 from hollowbody.errors import DeckError
 from hollowbody.materials.rubber_table import (
     RubberTable,
@@ -52,6 +60,14 @@ N_PARAMS = 9
 
 #: LS-DYNA default of MU.
 MU_DEFAULT = 0.1
+
+#: Material kind of the law (``MaterialDef.kind``) and its keyword.
+KIND = "rubber181"
+KEYWORD = "MAT_SIMPLIFIED_RUBBER"
+#: Names of the per-element history arrays, in the order of the kernel's history tuple.
+HISTORY_FIELDS: tuple[str, ...] = ("_fric", "_eig")
+
+_THIRD = 1.0 / 3.0
 
 
 def rubber_params(mat: MaterialDef, curves: dict[int, Curve],
@@ -180,3 +196,152 @@ def rubber_friction(s0, s1, s2, s3, s4, s5, e0, e1, e2, e3, e4, e5, gf, sigf):
         n4 *= r
         n5 *= r
     return n0, n1, n2, n3, n4, n5
+
+
+# -- solid law interface --------------------------------------------------------------
+def solid_params(mat: MaterialDef, curves: dict[int, Curve]) -> tuple[np.ndarray, ...]:
+    """Parameter tuple of the solid kernel: (packed parameters, f table, g table), GPa.
+
+    Validation and warnings as :func:`rubber_params`.
+    """
+    mp, table = rubber_params(mat, curves)
+    return (mp, table.f, table.g)
+
+
+def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
+    """Initial dilatational wave speed (mm/ms), :func:`rubber_wave_speed0`."""
+    return rubber_wave_speed0(params[0])
+
+
+def friction_on(mp: np.ndarray) -> bool:
+    """True when the frictional damping is active (G > 0 and SIGF > 0)."""
+    return bool(mp[P_GF] > 0.0 and mp[P_SIGF] > 0.0)
+
+
+def solid_history(params: tuple[np.ndarray, ...], n_elem: int) -> dict[str, np.ndarray]:
+    """History arrays by name: ``_fric`` (e, 6) GPa frictional stress ((1, 6) when
+    friction is off) and ``_eig`` (e, 3, 3) eigenvector warm starts (identity)."""
+    fric = np.zeros((n_elem if friction_on(params[0]) else 1, 6))
+    eig = np.zeros((n_elem, 3, 3))
+    eig[:, [0, 1, 2], [0, 1, 2]] = 1.0
+    return {"_fric": fric, "_eig": eig}
+
+
+def solid_erode(history: tuple[np.ndarray, ...], idx: np.ndarray) -> None:
+    """Zero the frictional stress of eroded elements ``idx``."""
+    fric = history[0]
+    if fric.shape[0] == history[1].shape[0]:
+        fric[idx] = 0.0
+
+
+@njit(cache=True, fastmath={"contract"})
+def _friction_step(e, rot, fric, e0, e1, e2, e3, e4, e5, gf, sigf):
+    """Rotate, increment and limit the frictional stress fric[e] (GPa); returns it.
+
+    A function of its own, not IR-inlined (LLVM still inlines it): written
+    inline in :func:`solid_update`, its stores to ``fric`` were lost once the
+    update was inlined into the parallel element loop (numba 0.68), which the
+    bit-for-bit comparison with the former rubber kernel showed.
+    """
+    r0, r1, r2, r3, r4, r5 = rotate_sym(rot, fric[e, 0], fric[e, 1], fric[e, 2],
+                                        fric[e, 3], fric[e, 4], fric[e, 5])
+    r0, r1, r2, r3, r4, r5 = rubber_friction(r0, r1, r2, r3, r4, r5, e0, e1, e2, e3, e4, e5,
+                                             gf, sigf)
+    fric[e, 0] = r0
+    fric[e, 1] = r1
+    fric[e, 2] = r2
+    fric[e, 3] = r3
+    fric[e, 4] = r4
+    fric[e, 5] = r5
+    return r0, r1, r2, r3, r4, r5
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_constants(params):
+    """Kernel: the scalars of ``params`` the update uses, read once per call.
+
+    Returns (KM, MU, G0, rho0, c_s, G, SIGF, table origin, table inverse step,
+    friction on).
+    """
+    mp = params[0]
+    gf = mp[P_GF]
+    sigf = mp[P_SIGF]
+    return (mp[P_BULK], mp[P_MU], mp[P_G0], mp[P_RHO], mp[P_CS], gf, sigf, mp[P_LN0],
+            mp[P_INVD], gf > 0.0 and sigf > 0.0)
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def solid_update(e, dt, vol, vol0, l, xe, b0, lm, rot, work, stress, consts, params, history):
+    """Kernel: new stress of element ``e`` (hyperelastic + damping, module docstring).
+
+    dt ms; vol, vol0 current / initial volume mm^3; l = vol^(1/3) mm; xe (8, 3)
+    mm nodal positions relative to node 1 (F = sum_a x_a (x) b0_a); b0 (e, 8, 3)
+    1/mm reference gradients; lm (3, 3) 1/ms mid-step velocity gradient; rot
+    (3, 3) incremental rotation; work (3, 3) scratch (eigenvectors); stress
+    (e, 6) unused (total form); consts from :func:`solid_constants`; params
+    (mp, ftab, gtab); history (fric, eig), updated for element e. Returns
+    (s0..s5 GPa, rho kg/mm^3, modulus GPa, c mm/ms).
+    """
+    bulk, mu_d, g0, rho0, cs, gf, sigf, ln0, invd, use_fric = consts
+    ftab = params[1]
+    gtab = params[2]
+    fric = history[0]
+    eig = history[1]
+    vec = work
+    f00 = f01 = f02 = f10 = f11 = f12 = f20 = f21 = f22 = 0.0
+    for a in range(8):
+        xa, ya, za = xe[a, 0], xe[a, 1], xe[a, 2]
+        ba0, ba1, ba2 = b0[e, a, 0], b0[e, a, 1], b0[e, a, 2]
+        f00 += xa * ba0
+        f01 += xa * ba1
+        f02 += xa * ba2
+        f10 += ya * ba0
+        f11 += ya * ba1
+        f12 += ya * ba2
+        f20 += za * ba0
+        f21 += za * ba1
+        f22 += za * ba2
+    for i in range(3):
+        vec[i, 0] = eig[e, i, 0]
+        vec[i, 1] = eig[e, i, 1]
+        vec[i, 2] = eig[e, i, 2]
+    t0, t1, t2, t3, t4, t5, gt = rubber_deviatoric(f00, f01, f02, f10, f11, f12,
+                                                   f20, f21, f22, vec, ftab, gtab,
+                                                   ln0, invd)
+    for i in range(3):
+        eig[e, i, 0] = vec[i, 0]
+        eig[e, i, 1] = vec[i, 1]
+        eig[e, i, 2] = vec[i, 2]
+    jac = vol / vol0
+    rho = rho0 / jac
+    gtan = max(g0, gt)
+    modulus = bulk + 4.0 / 3.0 * (gtan + gf)
+    c = math.sqrt(modulus / rho)
+    d0 = lm[0, 0]
+    d1 = lm[1, 1]
+    d2 = lm[2, 2]
+    d3 = 0.5 * (lm[0, 1] + lm[1, 0])
+    d4 = 0.5 * (lm[1, 2] + lm[2, 1])
+    d5 = 0.5 * (lm[2, 0] + lm[0, 2])
+    trd = d0 + d1 + d2
+    dm = trd * _THIRD
+    eta2 = 2.0 * mu_d * rho * cs * l
+    p = bulk * (jac - 1.0)
+    ij = 1.0 / jac
+    n0 = t0 * ij + p + eta2 * (d0 - dm)
+    n1 = t1 * ij + p + eta2 * (d1 - dm)
+    n2 = t2 * ij + p + eta2 * (d2 - dm)
+    n3 = t3 * ij + eta2 * d3
+    n4 = t4 * ij + eta2 * d4
+    n5 = t5 * ij + eta2 * d5
+    if use_fric:
+        r0, r1, r2, r3, r4, r5 = _friction_step(e, rot, fric, dt * (d0 - dm), dt * (d1 - dm),
+                                                dt * (d2 - dm), dt * d3, dt * d4, dt * d5,
+                                                gf, sigf)
+        n0 += r0
+        n1 += r1
+        n2 += r2
+        n3 += r3
+        n4 += r4
+        n5 += r5
+    return n0, n1, n2, n3, n4, n5, rho, modulus, c

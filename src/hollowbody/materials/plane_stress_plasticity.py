@@ -29,6 +29,9 @@ with its last slope (LS-DYNA's MAT_024 convention), scaled by a strain-rate
 factor computed by the caller (Cowper-Symonds or a curve).
 
 Everything here is ``@njit`` and allocation-free: kernels call it per point.
+
+Shell law ``KIND_PLASTIC`` (*MAT_PLASTIC_KINEMATIC and
+*MAT_PIECEWISE_LINEAR_PLASTICITY; see :mod:`hollowbody.materials.shell_laws`).
 """
 
 from __future__ import annotations
@@ -61,6 +64,8 @@ N_PARAMS = 11
 
 KIND_ELASTIC = 0
 KIND_PLASTIC = 1
+#: Shell law kind of this module (``PlaneStressMaterial.kind``).
+KIND = KIND_PLASTIC
 
 #: Relative tolerance of the consistency condition (also the elastic check).
 YIELD_TOL = 1.0e-11
@@ -218,3 +223,4 @@ def rate_factor(mp, rx, ry, dxx: float, dyy: float, gxy: float) -> float:
         v, _ = table_eval(r, rx, ry)
         return v
     return 1.0
+

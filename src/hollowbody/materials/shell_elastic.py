@@ -7,6 +7,9 @@ In the co-rotational frame of a shell integration point::
 
 (the update itself is :func:`hollowbody.materials.plane_stress_plasticity.elastic_plane_stress`).
 Transverse shear is elastic for every shell material (element kernel).
+
+Shell law ``KIND_ELASTIC`` (see :mod:`hollowbody.materials.shell_laws`); no
+history is used.
 """
 
 from __future__ import annotations
@@ -17,6 +20,9 @@ from hollowbody.materials.plane_stress_material import PlaneStressMaterial, elas
 from hollowbody.materials.plane_stress_plasticity import KIND_ELASTIC
 from hollowbody.model.model import MaterialDef
 
+#: Shell law kind (``PlaneStressMaterial.kind``); the element loop's code path.
+KIND = KIND_ELASTIC
+
 
 def elastic_shell(mat: MaterialDef) -> PlaneStressMaterial:
     """Plane-stress description of a *MAT_ELASTIC (E, PR; DeckError when invalid)."""
@@ -24,3 +30,4 @@ def elastic_shell(mat: MaterialDef) -> PlaneStressMaterial:
     return PlaneStressMaterial(kind=KIND_ELASTIC, e_mod=e_mod, nu=nu, density=rho,
                                hard_x=np.zeros(1), hard_y=np.full(1, np.inf),
                                label=f"MAT_ELASTIC {mat.mid}")
+
