@@ -15,7 +15,7 @@ import pytest
 
 from hollowbody.elements.shell_group import ShellGroupRuntime
 from hollowbody.elements.solid_group import SolidGroupRuntime
-from hollowbody.elements.structured_mesh import block_mesh, distort
+from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import (
     Curve,
     HourglassDef,
@@ -91,7 +91,7 @@ SOLIDS = {
 @pytest.mark.parametrize("case", sorted(SOLIDS))
 def test_solid_restart_from_state_fields_is_bit_identical(case):
     mat, curves, ihq = SOLIDS[case]
-    x0, conn = block_mesh(4, 3, 3, (4.0, 3.0, 3.0))
+    x0, conn = block_mesh((4, 3, 3), (4.0, 3.0, 3.0))
     x0 = distort(x0, 0.1, seed=1)
     group = SolidGroup(1, np.arange(1, conn.shape[0] + 1), conn)
 
