@@ -21,8 +21,8 @@ import math
 import numpy as np
 from numba import njit
 
-from hollowbody.elements.hex8_kinematics import rotate_sym
 from hollowbody.errors import DeckError
+from hollowbody.materials.tensor3 import rotate_sym
 from hollowbody.model.model import Curve, MaterialDef
 
 P_LAMBDA, P_MU, P_BULK, P_RHO, P_C = range(5)

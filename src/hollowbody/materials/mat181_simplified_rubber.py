@@ -44,7 +44,6 @@ import warnings
 import numpy as np
 from numba import njit
 
-from hollowbody.elements.hex8_kinematics import rotate_sym
 from hollowbody.errors import DeckError
 from hollowbody.materials.rubber_table import (
     RubberTable,
@@ -53,6 +52,7 @@ from hollowbody.materials.rubber_table import (
     table_lookup,
 )
 from hollowbody.materials.sym3_eigen import jacobi_eig3
+from hollowbody.materials.tensor3 import rotate_sym
 from hollowbody.model.model import Curve, MaterialDef
 
 P_BULK, P_MU, P_G0, P_RHO, P_CS, P_GF, P_SIGF, P_LN0, P_INVD = range(9)
