@@ -50,3 +50,23 @@ def test_check_predicts_the_first_step_of_regression_decks(deck, tmp_path, capsy
 def test_check_predicts_the_first_step_of_the_block_decks(structure, tmp_path, capsys):
     predicted, taken = _check_and_run(_block(tmp_path, structure), tmp_path, capsys)
     assert predicted == pytest.approx(taken, rel=1e-12)
+
+
+def test_check_rejects_what_the_run_set_up_rejects_with_the_same_message(tmp_path, capsys):
+    """A material that solids cannot use passes the reader and the builder and fails the
+    run's set-up: check and run both refuse it (exit 2) with the same file:line message
+    (check used to say "the deck can run")."""
+    text = (DECKS / "hand_check.k").read_text().replace(
+        "*MAT_ELASTIC\n         1    1.0e-6      0.21       0.3",
+        "*MAT_PLASTIC_KINEMATIC\n         1    1.0e-6      0.21       0.3     0.001", 1)
+    path = tmp_path / "bad.k"
+    path.write_text(text)
+    code = cli_main(["check", str(path), "--json"])
+    s = json.loads(capsys.readouterr().out)
+    assert code == 2 and not s["can_run"]
+    (problem,) = s["problems"]
+    assert problem.startswith(f"{path}:29: *MAT_PLASTIC_KINEMATIC:")
+    assert "not available for solid elements" in problem
+    code = cli_main(["run", str(path), "--out", str(tmp_path / "run"), "--quiet"])
+    assert code == 2
+    assert problem in capsys.readouterr().err
