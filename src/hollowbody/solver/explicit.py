@@ -106,9 +106,9 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         path = rs.find_dump(out, given)
         header, payload = rs.read_dump(path, model)
         resume = (path, header, payload)
-    out.mkdir(parents=True, exist_ok=True)
     wall0 = time.perf_counter()
-    plan = assemble(model)
+    plan = assemble(model)  # set-up errors (DeckError) before anything is written
+    out.mkdir(parents=True, exist_ok=True)
     end_time = options.end_time if options.end_time is not None else model.controls.end_time
     if options.erode is not None:
         plan.erode = bool(options.erode)

@@ -70,3 +70,4 @@ def test_check_rejects_what_the_run_set_up_rejects_with_the_same_message(tmp_pat
     code = cli_main(["run", str(path), "--out", str(tmp_path / "run"), "--quiet"])
     assert code == 2
     assert problem in capsys.readouterr().err
+    assert not (tmp_path / "run").exists()  # nothing written for a deck that cannot run
