@@ -61,19 +61,28 @@ class Block:
     def has(self, option: str) -> bool:
         return option in self.options
 
-    def lines(self) -> list[tuple[int, str]]:
-        """(line number, text) of every line except ``$`` comments; trailing blanks dropped."""
+    def lines(self, trailing: bool = False) -> list[tuple[int, str]]:
+        """(line number, text) of every line except ``$`` comments.
+
+        Blank lines after the last non-blank one are dropped unless ``trailing``
+        (a blank line can be a card of default values). The empty remainder
+        after the block's final newline is never a line.
+        """
         out = []
-        for k, raw in enumerate(self.body.split(b"\n")):
+        raws = self.body.split(b"\n")
+        if not raws[-1]:
+            raws.pop()
+        for k, raw in enumerate(raws):
             if raw[:1] == b"$":
                 continue
             out.append((self.body_line + k, raw.decode("latin-1").rstrip("\r\n")))
-        while out and not out[-1][1].strip():
-            out.pop()
+        if not trailing:
+            while out and not out[-1][1].strip():
+                out.pop()
         return out
 
-    def cursor(self) -> Cursor:
-        return Cursor(self, self.lines())
+    def cursor(self, trailing: bool = False) -> Cursor:
+        return Cursor(self, self.lines(trailing))
 
     def error(self, message: str, line: int | None = None) -> DeckError:
         return DeckError(message, self.file, self.line if line is None else line, self.name)
@@ -109,6 +118,15 @@ class Cursor:
         out = self._lines[self._pos:]
         self._pos = len(self._lines)
         return out
+
+    def only_blank(self) -> bool:
+        """Whether every remaining line is blank (also when none remains)."""
+        return all(not t.strip() for _, t in self._lines[self._pos:])
+
+    def skip_blank(self) -> None:
+        """Move past blank lines."""
+        while not self.done() and not self._lines[self._pos][1].strip():
+            self._pos += 1
 
     def parse(self, card: tuple[Field, ...], what: str) -> tuple[int, dict[str, object]]:
         line, text = self.take(what)
@@ -191,6 +209,12 @@ class SimpleKeyword(KeywordItem):
     repeats until the next keyword (one item per repetition). Lines after the
     known cards of a non-repeating keyword are kept in ``extra_cards`` and
     written back unchanged.
+
+    A blank line is a card of default values, as in LS-DYNA: a blank required
+    card is read (also when it is the block's last line) and so is a blank
+    optional card followed by more cards; blank lines at the end of the block
+    are not optional cards. In a repeating keyword, blank lines between
+    repetitions are skipped.
     """
 
     extra_cards: list[str] = field(default_factory=list)
@@ -230,9 +254,13 @@ class SimpleKeyword(KeywordItem):
 
     @classmethod
     def read(cls, block: Block) -> list[KeywordItem]:
-        cur = block.cursor()
+        cur = block.cursor(trailing=True)
         items: list[KeywordItem] = []
         while not cur.done():
+            if cls.REPEAT and (cur.only_blank() or cls._bulk_like(block)):
+                cur.skip_blank()
+                if cur.done():
+                    break
             values: dict[str, object] = {}
             first = cur.peek()[0]  # type: ignore[index]
             if cls.TITLE_ATTR and block.has("TITLE") and not cls.ID_ATTRS:
@@ -244,7 +272,7 @@ class SimpleKeyword(KeywordItem):
             for k, card in enumerate(cls.layout()):
                 if not cls.want_card(k, values):
                     continue
-                if k >= cls.N_REQUIRED and (cur.done() or cls.REPEAT):
+                if k >= cls.N_REQUIRED and (cur.only_blank() or cls.REPEAT):
                     break
                 names = ", ".join(f.name.upper() for f in card if f.name != "-")
                 line, vals = cur.parse(card, f"card {k + 1} ({names})")
@@ -252,7 +280,10 @@ class SimpleKeyword(KeywordItem):
                 values.update(vals)
             values.update(cls.read_tail(cur, block, values))
             if not cls.REPEAT:
-                values["extra_cards"] = [t for _, t in cur.rest()]
+                extra = [t for _, t in cur.rest()]
+                while extra and not extra[-1].strip():
+                    extra.pop()
+                values["extra_cards"] = extra
             main_line = card_lines.get(cls.MAIN_CARD, min(card_lines.values(), default=first))
             values["source"] = block.source(main_line)
             items.append(cls.build(values, block))
@@ -265,6 +296,13 @@ class SimpleKeyword(KeywordItem):
             names = ", ".join(f.name.upper() for f in first_card if f.name != "-")
             raise block.error(f"card 1 ({names}) is missing")
         return items
+
+    @classmethod
+    def _bulk_like(cls, block: Block) -> bool:
+        """A repeating single card (a list of rows): blank lines in it are skipped."""
+        titled = (cls.TITLE_ATTR and block.has("TITLE")) or \
+            (cls.ID_ATTRS and (block.has("ID") or block.has("TITLE")))
+        return len(cls.layout()) == 1 and not titled
 
     @classmethod
     def read_prefix(cls, cur: Cursor, block: Block) -> dict[str, object]:

@@ -47,6 +47,16 @@ def read_deck_text(text: str, name: str = "<text>", strict: bool = False) -> Dec
     return _Reader(strict).read_bytes(text.encode("latin-1"), name, os.path.join(".", name))
 
 
+def is_binary(data: bytes, probe: int = 8192) -> bool:
+    """Whether ``data`` looks like a binary file: a NUL byte, or more than 1 % control
+    characters (other than tab, CR, LF, FF) in its first ``probe`` bytes."""
+    head = data[:probe]
+    if b"\x00" in head:
+        return True
+    ctrl = sum(head.count(bytes([c])) for c in range(32) if c not in (9, 10, 12, 13))
+    return ctrl > 0.01 * max(len(head), 1)
+
+
 def _split_keyword_line(raw: bytes) -> tuple[str, str, str | None]:
     """(NAME, arguments, format flag) of a keyword line; flag ``+``/``-``/``%`` or None."""
     text = raw.decode("latin-1").strip()[1:]
@@ -100,6 +110,9 @@ class _Reader:
     def _parse(self, data: bytes, display: str, real: str) -> Deck:
         if data.startswith(b"\xef\xbb\xbf"):
             data = data[3:]
+        if is_binary(data):
+            raise DeckError("not a keyword deck: the file is binary (a keyword deck is text)",
+                            display)
         deck = Deck(display)
         starts = []
         if data.startswith(b"*"):
@@ -111,6 +124,10 @@ class _Reader:
             starts.append(pos)
             nxt = data.find(b"\n*", pos)
             pos = nxt + 1 if nxt >= 0 else -1
+        if not starts and len(self.stack) == 1:
+            what = "the file is empty" if not data.strip() else "no line starts with '*'"
+            raise DeckError(f"not a keyword deck: {what} (a deck is keyword lines such as "
+                            "*KEYWORD, *NODE, ... each followed by its cards)", display)
         line = 1 + data.count(b"\n", 0, starts[0]) if starts else 1
         for k, start in enumerate(starts):
             end = starts[k + 1] if k + 1 < len(starts) else len(data)
