@@ -21,26 +21,47 @@ def load_model(deck: str | Path, strict: bool = False) -> Model:
     return build_model(read_deck(Path(deck), strict=strict))
 
 
+def _read_for_run(deck: str | Path, strict: bool) -> tuple[Model, tuple[Path, ...]]:
+    """The model and the files it was read from (deck and includes). Unsupported
+    keywords are not warned about: the run lists them in messages.log and summary.json."""
+    import warnings
+
+    from hollowbody.build import build_model
+    from hollowbody.io.keyword import UnsupportedKeywordWarning, read_deck
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnsupportedKeywordWarning)
+        d = read_deck(Path(deck), strict=strict)
+    files = (Path(deck), *(Path(inc.deck.path) for inc in d.includes() if inc.deck.path))
+    return build_model(d), files
+
+
 def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
-              dump_cycles: int | None = None) -> RunResult:
+              dump_cycles: int | None = None, overwrite: bool = False,
+              inputs: tuple[Path, ...] = ()) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
     ``d3dumpNN`` of ``out_dir``; dump_cycles: cycles between restart files
-    (overrides *DATABASE_BINARY_D3DUMP).
+    (overrides *DATABASE_BINARY_D3DUMP). An ``out_dir`` holding an earlier run
+    is refused (UserInputError) unless ``overwrite``, which deletes that run's
+    outputs first (never the ``inputs`` files); a restart resumes into it.
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
-                                 dump_cycles=dump_cycles))
+                                 dump_cycles=dump_cycles, overwrite=overwrite,
+                                 inputs=tuple(inputs)))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
-             dump_cycles: int | None = None) -> RunResult:
-    """Read ``deck`` and run it; see :func:`run_model`."""
-    model = load_model(deck, strict=strict)
+             dump_cycles: int | None = None, overwrite: bool = False) -> RunResult:
+    """Read ``deck`` and run it; see :func:`run_model` (the deck and its includes are
+    the run's ``inputs``)."""
+    model, files = _read_for_run(deck, strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
-                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles)
+                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
+                     overwrite=overwrite, inputs=files)

@@ -15,6 +15,7 @@ from collections import defaultdict
 import numpy as np
 
 from hollowbody.build.tied import tied_contacts
+from hollowbody.build.unsupported import not_defined, unsupported_definitions
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     BoundarySpcNode,
@@ -128,6 +129,7 @@ class _Builder:
             for cls in type(item).__mro__:
                 groups[cls].append(item)
         self.of = lambda cls: groups.get(cls, [])
+        self.raw_defs = unsupported_definitions(deck)
 
     # -- nodes ---------------------------------------------------------------
 
@@ -243,12 +245,12 @@ class _Builder:
         out = {}
         items = self.of(Part) + self.of(PartInertia)
         for pid, p in _unique_ids(items, "part", "pid").items():
-            if p.secid not in sections:
-                raise _err(p, f"part {pid} refers to section {p.secid} which is not defined")
-            if p.mid not in materials:
-                raise _err(p, f"part {pid} refers to material {p.mid} which is not defined")
-            if p.hgid and p.hgid not in hourglass:
-                raise _err(p, f"part {pid} refers to hourglass {p.hgid} which is not defined")
+            for what, ident, known in (("section", p.secid, sections),
+                                       ("material", p.mid, materials),
+                                       ("hourglass", p.hgid, hourglass)):
+                if (ident or what != "hourglass") and ident not in known:
+                    raise _err(p, f"part {pid} refers to {what} {ident} "
+                               + not_defined(self.raw_defs, what, ident))
             out[pid] = m.PartDef(pid, p.secid, p.mid, p.hgid, p.title, p.source)
         return out
 
@@ -275,8 +277,8 @@ class _Builder:
         upids, first = np.unique(pids, return_index=True)
         for pid, r in zip(upids.tolist(), first.tolist()):
             if pid not in parts:
-                raise rows.error(r, f"element {ids[r]} refers to part {pid} which is not "
-                                 "defined")
+                raise rows.error(r, f"element {ids[r]} refers to part {pid} "
+                                 + not_defined(self.raw_defs, "part", pid))
             sec = sections[parts[pid].secid]
             if sec.kind != kind:
                 raise rows.error(r, f"element {ids[r]} is a {kind} but part {pid} has "

@@ -63,6 +63,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="run solid and hollow at this speed and overlay their curves")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: block_<structure>_<tissue>_<speed>kmh)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the outputs of an earlier run in --out (else it is refused)")
     p.set_defaults(func=main)
 
 
@@ -87,6 +89,10 @@ def main(args: argparse.Namespace) -> int:
                           thickness_update=args.thickness_update)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    from hollowbody.solver.explicit import prepare_out_dir
+
+    for folder in (out / "solid", out / "hollow") if args.compare else (out,):
+        prepare_out_dir(folder, args.overwrite)  # before the deck is written
     if args.compare:
         return _compare(cfg, out, args)
     res = block_impact(cfg, out, vtk=not args.no_vtk, quiet=args.quiet)

@@ -3,8 +3,12 @@
 Prints a model summary (counts, parts, masses, extent, critical time steps,
 unsupported keywords) without running the deck: the run's set-up and its forces
 at t = 0 are computed, so the time step shown is the one the run takes first.
-Exit code 0 when the deck can run, 2 when it cannot (reasons listed) or is
-malformed (one error line).
+The inventory (nodes, elements by kind, parts, materials and sections by
+keyword, unsupported keywords) is printed whenever the deck could be read, also
+when it cannot run: a deck whose references do not resolve is counted from its
+keyword items (``can_run`` false, the error as the reason). Exit code 0 when
+the deck can run, 2 when it cannot (reasons listed) or is malformed (one error
+line).
 """
 
 from __future__ import annotations
@@ -33,10 +37,25 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from hollowbody.build.inventory import deck_inventory
+    from hollowbody.errors import DeckError
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnsupportedKeywordWarning)  # listed in the summary
         deck = read_deck(args.deck, strict=args.strict)
-        model = build_model(deck)
+        try:
+            model = build_model(deck)
+        except DeckError as exc:
+            model, error = None, exc
+    if model is None:  # the inventory of what was read, then the error
+        summary = deck_inventory(deck)
+        summary.update(deck=args.deck, problems=[str(error)], can_run=False, warnings=[],
+                       time_step=None)
+        if args.json:
+            print(json.dumps(summary))
+        else:
+            print_summary(summary)
+        raise error
     summary = summarize(model)
     summary["deck"] = args.deck
     _first_step(model, summary)
@@ -99,17 +118,26 @@ def print_summary(s: dict) -> None:
         table.add_column(col, justify="right" if col in ("pid", "elements", "mass (kg)")
                          else "left")
     for p in s["parts"]:
-        table.add_row(str(p["pid"]), escape(p["title"]), str(p["elements"]), p["section"],
-                      p["material"], f"{p['mass_kg']:.6g}")
+        mass = "-" if p["mass_kg"] is None else f"{p['mass_kg']:.6g}"
+        table.add_row(str(p["pid"]), escape(p["title"]), str(p["elements"]),
+                      escape(p["section"]), escape(p["material"]), mass)
     con.print(table)
-    con.print(f"total mass {s['mass_kg']:.6g} kg (element masses {s['element_mass_kg']:.6g} kg)")
+    for what in ("materials", "sections"):
+        if s.get(what):
+            con.print(f"{what}: " + "; ".join(f"{kw} {', '.join(map(str, ids))}"
+                                              for kw, ids in s[what].items()), markup=False)
+    if s["mass_kg"] is not None:
+        con.print(f"total mass {s['mass_kg']:.6g} kg (element masses "
+                  f"{s['element_mass_kg']:.6g} kg)")
     bb = s["bounding_box"]
     if bb["min"] is not None:
         lo, hi = bb["min"], bb["max"]
         con.print("bounding box (mm): " + ", ".join(
             f"{a} {lo[k]:.6g} .. {hi[k]:.6g}" for k, a in enumerate("xyz")))
-    ts = s["time_step"]
-    con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; shells {_fmt_dt(ts['shell'])}")
+    ts = s["time_step"] or {"solid": None, "shell": None, "run_dt": None}
+    if s["time_step"] is not None:
+        con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; "
+                  f"shells {_fmt_dt(ts['shell'])}")
     if ts["run_dt"]:
         con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "

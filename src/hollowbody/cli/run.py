@@ -4,6 +4,9 @@ Exit codes: 0 normal termination, 2 bad input (nothing run), 3 error
 termination (negative volume, DTMIN, non-finite numbers; outputs kept),
 130 user interrupt (outputs kept). With ``--restart`` the run resumes from
 the newest restart file (``d3dumpNN``) of the output folder, or the one given.
+An output folder holding an earlier run is refused unless ``--overwrite``, which
+deletes that run's outputs first (histories, states, log, summary, restart
+files; never the deck or its includes).
 """
 
 from __future__ import annotations
@@ -21,6 +24,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("deck", type=Path, help="LS-DYNA keyword deck (.k, .key, .dyn)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: <deck name>_out next to the deck)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the outputs of an earlier run in --out (else it is refused)")
     p.add_argument("--end-time", type=float, default=None, help="override ENDTIM (ms)")
     p.add_argument("--erode", action="store_true", default=None,
                    help="delete solids that reach negative volume instead of stopping")
@@ -50,7 +55,8 @@ def main(args: argparse.Namespace) -> int:
     out = args.out or args.deck.with_name(args.deck.stem + "_out")
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
                       vtk=not args.no_vtk, quiet=args.quiet, strict=args.strict,
-                      restart=args.restart, dump_cycles=args.dump_cycles)
+                      restart=args.restart, dump_cycles=args.dump_cycles,
+                      overwrite=args.overwrite)
     print(f"{result.status}: {result.reason}")
     print(f"  {result.cycles} cycles, end time {result.end_time_ms:.6g} ms, wall "
           f"{result.summary.get('wall_seconds', 0.0):.2f} s, energy ratio "

@@ -112,6 +112,24 @@ def shell_lengths(conn: np.ndarray, x: np.ndarray) -> np.ndarray:
     return quad_areas(conn, x) / np.maximum(sides, 1e-300)
 
 
+def by_keyword(pairs: list[tuple[str, int]]) -> dict[str, list[int]]:
+    """{"*KEYWORD": sorted ids} from (keyword, id) pairs."""
+    out: dict[str, list[int]] = {}
+    for kw, ident in pairs:
+        out.setdefault(kw, []).append(int(ident))
+    return {k: sorted(v) for k, v in sorted(out.items())}
+
+
+def unsupported_entries(model: Model) -> list[dict]:  # or a Deck: both have .unsupported
+    """The unsupported keywords of ``model`` as JSON-ready entries (file, line, keyword)."""
+    return [{"keyword": k, "file": f, "line": n} for k, f, n in model.unsupported]
+
+
+def unsupported_lines(model: Model) -> list[str]:
+    """One message line per unsupported keyword: ``file:line: *KEYWORD: ... ignored``."""
+    return [f"{f}:{n}: *{k}: keyword not supported, ignored" for k, f, n in model.unsupported]
+
+
 def summarize(model: Model) -> dict:
     """JSON-ready summary of ``model`` (see the module docstring for the time steps)."""
     x = model.node_x0
@@ -144,6 +162,10 @@ def summarize(model: Model) -> dict:
         "nodes": model.n_nodes,
         "elements": elements,
         "parts": parts,
+        "materials": by_keyword([(f"*{d.keyword or d.kind}", mid)
+                                  for mid, d in model.materials.items()]),
+        "sections": by_keyword([(f"*SECTION_{d.kind.upper()}", sid)
+                                 for sid, d in model.sections.items()]),
         "mass_kg": float(sum(part_mass.values()) + extra),
         "element_mass_kg": extra,
         "bounding_box": {"min": x.min(axis=0).tolist() if x.size else None,
@@ -151,7 +173,7 @@ def summarize(model: Model) -> dict:
         "end_time": model.controls.end_time,
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),
-        "unsupported": [{"keyword": k, "file": f, "line": n} for k, f, n in model.unsupported],
+        "unsupported": unsupported_entries(model),
     }
     summary["problems"] = problems(model, summary)
     summary["can_run"] = not summary["problems"]

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hollowbody.model.summary import unsupported_entries, unsupported_lines
 from hollowbody.solver import restart as rs
 from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
@@ -49,6 +50,8 @@ class RunOptions:
     restart: resume from this restart file, or from the newest ``d3dumpNN``
     of ``out_dir`` with :data:`NEWEST`; None starts at t = 0.
     dump_cycles: overrides *DATABASE_BINARY_D3DUMP CYCL when given (0 = none).
+    overwrite: an ``out_dir`` holding an earlier run is cleared first (else refused);
+    inputs: files the run reads (the deck and its includes), never deleted.
     """
 
     out_dir: Path
@@ -59,6 +62,8 @@ class RunOptions:
     label: str = "run"
     restart: Path | str | None = None
     dump_cycles: int | None = None
+    overwrite: bool = False
+    inputs: tuple[Path, ...] = ()
 
 
 @dataclass
@@ -97,6 +102,42 @@ class _Stop:
             signal.signal(sig, old)
 
 
+#: Files a run writes into its output folder (what ``overwrite`` deletes).
+RUN_OUTPUTS = ("*.csv", "states*.vtu", "states*.pvd", "messages.log", "summary.json",
+               "d3dump*", "force_displacement.*")
+#: Files that show a folder holds an earlier run.
+EARLIER_RUN = ("summary.json", "messages.log", "glstat.csv", "states.pvd", "d3dump*")
+
+
+def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -> None:
+    """Check (and with ``overwrite`` clear) the output folder before a run writes to it.
+
+    A folder holding an earlier run (:data:`EARLIER_RUN`) is refused with a
+    UserInputError unless ``overwrite``, which deletes the earlier run's files
+    (:data:`RUN_OUTPUTS`) first. An input file (``inputs``) is never deleted: one
+    whose name is that of a run output is refused.
+    """
+    from hollowbody.errors import UserInputError
+
+    out = Path(out)
+    if not out.is_dir():
+        return
+    keep = {Path(p).resolve() for p in inputs}
+    outputs = sorted({f for pat in RUN_OUTPUTS for f in out.glob(pat) if f.is_file()})
+    clash = [f.name for f in outputs if f.resolve() in keep]
+    if clash:
+        raise UserInputError(f"{out}: the input file {clash[0]} has the name of a run output; "
+                             "choose another output folder")
+    earlier = sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
+    if earlier and not overwrite:
+        raise UserInputError(f"{out} holds the outputs of an earlier run ({', '.join(earlier)}):"
+                             " use --overwrite to replace them, --restart to resume that run, "
+                             "or another output folder")
+    if earlier:
+        for f in outputs:
+            f.unlink()
+
+
 def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     """Run ``model`` (a :class:`hollowbody.model.model.Model`) to termination."""
     out = Path(options.out_dir)
@@ -108,6 +149,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         resume = (path, header, payload)
     wall0 = time.perf_counter()
     plan = assemble(model)  # set-up errors (DeckError) before anything is written
+    if resume is None:  # a restart continues the folder's run
+        prepare_out_dir(out, options.overwrite, options.inputs)
     out.mkdir(parents=True, exist_ok=True)
     end_time = options.end_time if options.end_time is not None else model.controls.end_time
     if options.erode is not None:
@@ -117,11 +160,13 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     state = init_state(model, plan)
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
                          resume=resume[2]["outputs"] if resume else None)
-    extra: dict = {"restart_files": []}
+    extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model)}
     if resume is None:
         outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
                     f"{plan.element_counts()} ; end time {end_time:g} ms; erosion "
                     f"{'on' if plan.erode else 'off'}")
+        for line in unsupported_lines(model):
+            outputs.log(line, logging.WARNING)
         for rt in plan.elements:
             for w in getattr(rt, "warnings", []) or []:
                 outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
