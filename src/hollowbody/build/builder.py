@@ -249,7 +249,7 @@ class _Builder:
                                        ("material", p.mid, materials),
                                        ("hourglass", p.hgid, hourglass)):
                 if (ident or what != "hourglass") and ident not in known:
-                    raise _err(p, f"part {pid} refers to {what} {ident} "
+                    raise _err(p, f"part {pid} refers to {what} {ident}"
                                + not_defined(self.raw_defs, what, ident))
             out[pid] = m.PartDef(pid, p.secid, p.mid, p.hgid, p.title, p.source)
         return out
@@ -277,7 +277,7 @@ class _Builder:
         upids, first = np.unique(pids, return_index=True)
         for pid, r in zip(upids.tolist(), first.tolist()):
             if pid not in parts:
-                raise rows.error(r, f"element {ids[r]} refers to part {pid} "
+                raise rows.error(r, f"element {ids[r]} refers to part {pid}"
                                  + not_defined(self.raw_defs, "part", pid))
             sec = sections[parts[pid].secid]
             if sec.kind != kind:

@@ -48,9 +48,10 @@ def unsupported_definitions(deck: Deck) -> dict[tuple[str, int], RawKeyword]:
 
 
 def not_defined(defs: dict[tuple[str, int], RawKeyword], what: str, ident: int) -> str:
-    """End of a reference message: ``which is not defined`` or names the unsupported keyword."""
+    """End of a reference message (after the id): `` which is not defined``, or
+    ``, defined by *KEYWORD at file:line, which is not supported``."""
     raw = defs.get((what, ident))
     if raw is None:
-        return "which is not defined"
+        return " which is not defined"
     name = raw.keyword.split()[0].upper()
-    return f"defined by *{name} at {raw.source.file}:{raw.source.line}, which is not supported"
+    return f", defined by *{name} at {raw.source.file}:{raw.source.line}, which is not supported"
