@@ -37,7 +37,9 @@ def deck_inventory(deck: Deck) -> dict:
         for pid in np.atleast_1d(it.pids).tolist():
             count[pid] = count.get(pid, 0) + 1
     for it in deck.of_type(ShellElements):
-        conn = np.asarray(it.conn).reshape(len(np.atleast_1d(it.ids)), -1)
+        conn = np.asarray(it.conn)
+        if conn.ndim != 2 or not conn.size:
+            continue
         tri = int((conn[:, 3] == conn[:, 2]).sum()) if conn.shape[1] == 4 else conn.shape[0]
         elements["triangles"] += tri
         elements["shells"] += conn.shape[0] - tri

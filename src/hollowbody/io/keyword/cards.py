@@ -70,21 +70,33 @@ def parse_float(text: str) -> float:
     return value
 
 
+#: Integers must fit in a signed 64-bit integer (ids are stored as int64).
+INT_LIMIT = 2 ** 63
+
+
 def parse_int(text: str) -> int:
-    """Parse an integer field; an integral real ("3." or "3.0") is accepted."""
+    """Parse an integer field; an integral real ("3." or "3.0") is accepted.
+
+    Raises ValueError also for a value outside the signed 64-bit range.
+    """
     s = text.strip()
     try:
-        return int(s)
+        value = int(s)
     except ValueError:
-        value = parse_float(s)  # raises ValueError
-        if not math.isfinite(value) or value != int(value):
+        real = parse_float(s)  # raises ValueError
+        if not math.isfinite(real) or real != int(real):
             raise ValueError(text) from None
-        return int(value)
+        value = int(real)
+    if not -INT_LIMIT <= value < INT_LIMIT:
+        raise ValueError(text)
+    return value
 
 
 def bad_number(text: str, name: str, kind: str, file: str | None, line: int | None,
                keyword: str | None) -> DeckError:
     what = "an integer" if kind == "i" else "a number"
+    if kind == "i" and re.fullmatch(r"[+-]?\d+", text.strip()):
+        what = "an integer of at most 18 digits"
     return DeckError(f"field {name.upper()}: '{text.strip()}' is not {what}", file, line,
                      keyword)
 

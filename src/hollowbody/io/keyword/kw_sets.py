@@ -17,6 +17,9 @@ from hollowbody.io.keyword.base import ArrayEq, Block, Cursor, SimpleKeyword, re
 from hollowbody.io.keyword.bulk import float_texts, int_texts, join_rows
 from hollowbody.io.keyword.cards import field_width
 
+#: Most ids the ranges of one *SET_..._GENERATE may hold (a larger range is a typo).
+MAX_GENERATED = 20_000_000
+
 
 @register
 @dataclass(kw_only=True, eq=False)
@@ -156,6 +159,11 @@ class _GenerateSet(_IdListSet):
             k = int(bad[0])
             raise DeckError(f"range {r[k, 0]}..{r[k, 1]} is empty (end before begin)",
                             block.file, int(line_of[k]), block.name)
+        total = np.cumsum(r[:, 1] - r[:, 0] + 1) if r.size else np.zeros(0, np.int64)
+        if total.size and total[-1] > MAX_GENERATED:
+            k = int(np.argmax(total > MAX_GENERATED))
+            raise DeckError(f"range {r[k, 0]}..{r[k, 1]}: the ranges hold more than "
+                            f"{MAX_GENERATED} ids", block.file, int(line_of[k]), block.name)
         return {"ranges": r, "range_lines": line_of.tolist()}
 
     def tail_lines(self, fmt: str) -> list[str]:
