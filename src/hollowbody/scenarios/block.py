@@ -338,7 +338,7 @@ def block_impact(cfg: BlockConfig, out_dir: str | Path, vtk: bool = True,
     deck_path = out / "deck.k"
     write_deck(build_block_deck(cfg), deck_path)
     model = load_model(deck_path)
-    result = run_model(model, out, vtk=vtk, quiet=quiet,
+    result = run_model(model, out, vtk=vtk, quiet=quiet, overwrite=True,  # its own folder
                        label=f"block {cfg.structure} {cfg.tissue} {cfg.speed_kmh:g} km/h")
     curve = fdr.extract(out, IMPACTOR_NODE0, CONTACT_ID, (0.0, 0.0, -1.0), side="master",
                         label=f"{cfg.structure} {cfg.tissue}")

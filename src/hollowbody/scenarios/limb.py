@@ -304,7 +304,8 @@ def run_three_point_bending(out_dir: str | Path, segment: str = "thigh",
         write_deck(deck, folder / "deck.k")
         t0 = time.perf_counter()
         try:
-            res = run_deck(folder / "deck.k", folder, vtk=vtk, quiet=quiet)
+            res = run_deck(folder / "deck.k", folder, vtk=vtk, quiet=quiet,
+                           overwrite=True)  # the folder is the scenario's own
         except DeckError as exc:
             if "deformable shell" not in str(exc):
                 raise
