@@ -120,6 +120,8 @@ def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -
     from hollowbody.errors import UserInputError
 
     out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise UserInputError(f"{out} is a file, not an output folder")
     if not out.is_dir():
         return
     keep = {Path(p).resolve() for p in inputs}

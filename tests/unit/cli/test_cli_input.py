@@ -157,6 +157,15 @@ def test_an_input_named_like_a_run_output_is_never_overwritten(tmp_path, capsys)
     assert csv_deck.read_text() == deck.read_text()
 
 
+def test_an_output_folder_that_is_a_file_is_refused(tmp_path, capsys):
+    deck = _deck_in(tmp_path / "in")
+    out = tmp_path / "out"
+    out.write_text("a file")
+    assert main(["run", str(deck), "--out", str(out), *RUN]) == 2
+    assert capsys.readouterr().err.strip() == (f"hollowbody run: error: {out} is a file, not "
+                                               "an output folder")
+
+
 def test_block_refuses_an_earlier_run_unless_overwrite(tmp_path, capsys):
     out = tmp_path / "b"
     out.mkdir()
