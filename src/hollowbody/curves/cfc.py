@@ -21,17 +21,17 @@ the FlexPro "CFC Filter Calculation" page (weisang.com) and the J211-compliant
 filter of the MATLAB File Exchange (no. 61852), which both state the forward
 and backward 2-pole pass and the 2.0775 design factor.
 
-Ends: a forward-backward filter needs data before the first and after the
-last sample to settle. SAE J211-1 recommends recording pre- and post-event
-data for this or, where a record has none (a simulation that starts at first
-contact), padding the record; here it is extended by its inverted mirror
-image (odd reflection about the first and the last sample, as long as the
-record itself) before filtering and the extension is cut off again. The filtered series then starts at the first
-sample and ends at the last one: a contact force that is zero at first contact
-starts at zero even when a single-cycle contact spike follows, instead of
-starting at the spike smeared back into the time before contact. Away from the
-ends the result is the same as with any other padding (the peak of a force
-pulse in the middle of the record moves by round-off).
+Ends: a forward-backward filter needs data before the first and after the last
+sample to settle. SAE J211-1 recommends recording pre- and post-event data for
+this or, where a record has none (a simulation that starts at first contact),
+padding the record; here it is extended by its inverted mirror image (odd
+reflection about the first and the last sample, as long as the record itself)
+before filtering and the extension is cut off again. The filtered series then
+starts at the first sample and ends at the last one: a contact force that is
+zero at first contact starts at zero even when a single-cycle contact spike
+follows, instead of starting at the spike smeared back into the time before
+contact. Away from the ends the result is the same as with any other padding
+(the peak of a force pulse in the middle of the record moves by round-off).
 """
 
 from __future__ import annotations
