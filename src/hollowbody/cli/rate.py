@@ -37,16 +37,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[ty
     p.add_argument("--method", choices=METHODS, default="both",
                    help="rating method (default: both)")
     p.add_argument("--corridor", metavar="FILE",
-                   help="corridor CSV: polygon (x, y) or bounds (x, lower, upper)")
+                   help="corridor CSV: polygon (x, y) or bounds (x, lower, upper) "
+                   "(default: none)")
     p.add_argument("--columns", nargs=2, metavar=("TIME", "VALUE"),
                    help="time and value column of both curve files, by name or 1-based "
                    "number (default: 1 2)")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    dest="settings",
                    help="change a parameter, e.g. --set K_V=5, --set iso.eps_p=0.1, "
-                   "--set T_MIN=2 (repeatable; prefix cora. or iso. to pick a method)")
-    p.add_argument("--json", action="store_true", help="print the results as JSON")
-    p.add_argument("--plot", metavar="OUT.png", help="save a plot of the curves")
+                   "--set T_MIN=2 (repeatable; prefix cora. or iso. to pick a method; "
+                   "default: the methods' standard parameters)")
+    p.add_argument("--json", action="store_true",
+                   help="print the results as JSON (default: a table)")
+    p.add_argument("--plot", metavar="OUT.png",
+                   help="save a plot of the curves and the corridor (default: no plot)")
     p.set_defaults(func=run)
 
 
