@@ -14,26 +14,31 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("bending", help="limb three-point bending, solid vs hollow",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--segment", choices=("thigh", "leg"), default="thigh")
+                       description=plain(__doc__),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--segment", choices=("thigh", "leg"), default="thigh",
+                   help="limb segment (default thigh)")
     p.add_argument("--end-time", type=float, default=20.0,
                    help="simulated time in ms (default 20: 30 mm of deflection)")
     p.add_argument("--structures", default="solid,hollow",
                    help="comma-separated: solid, hollow (default both)")
-    p.add_argument("--self-contact", action="store_true",
-                   help="give the hollow muscle its self-contact (see docs/hollowize.md: "
-                        "it pushes tied wall edges apart)")
+    p.add_argument("--self-contact", action=argparse.BooleanOptionalAction, default=False,
+                   help="give the hollow muscle its self-contact (default: no; see "
+                        "docs/hollowize.md: it pushes tied wall edges apart)")
     p.add_argument("--dtmin", type=float, default=0.1,
                    help="DTMIN as a fraction of the initial time step (default 0.1; 0 = off)")
-    p.add_argument("--no-erode", action="store_true",
-                   help="end the run when the step falls below DTMIN instead of deleting the "
-                        "elements (crushed wall slivers under the impactor) that set it")
-    p.add_argument("--vtk", action="store_true", help="write ParaView states")
+    p.add_argument("--erode", action=argparse.BooleanOptionalAction, default=True,
+                   help="delete the elements whose step falls below DTMIN (crushed wall "
+                        "slivers under the impactor); --no-erode ends the run instead "
+                        "(default: erode)")
+    p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=False,
+                   help="write ParaView states (default: no)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: bending_<segment>)")
     p.set_defaults(func=main)
@@ -57,7 +62,7 @@ def main(args: argparse.Namespace) -> int:
                                    structures=structures,
                                    hollow_options=HollowOptions(self_contact=args.self_contact),
                                    quiet=False, vtk=args.vtk, dtmin=args.dtmin,
-                                   erode=not args.no_erode)
+                                   erode=args.erode)
     codes = []
     for name, r in runs.items():
         if r.status.startswith(("skipped", "failed")):

@@ -1,6 +1,6 @@
 """``hollowbody block``: the paper's block impact test (section 2.1).
 
-Builds the block test (DESIGN.md section 5), writes ``DIR/deck.k`` (the same
+Builds the block test (docs/block.md), writes ``DIR/deck.k`` (the same
 run, repeatable in LS-DYNA or OpenRadioss), runs it and writes
 ``DIR/force_displacement.csv`` and ``DIR/force_displacement.png`` next to the
 run's histories, ParaView states and ``summary.json``.
@@ -11,23 +11,29 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("block", help="the paper's block impact test (solid or hollow)",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--tissue", choices=("muscle", "fat"), default="muscle")
-    p.add_argument("--structure", choices=("solid", "hollow"), default="solid")
+                       description=plain(__doc__),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--tissue", choices=("muscle", "fat"), default="muscle",
+                   help="block tissue (default muscle)")
+    p.add_argument("--structure", choices=("solid", "hollow"), default="solid",
+                   help="solid hexahedra or hollow shell walls (default solid)")
     p.add_argument("--speed", type=float, default=40.0, help="impact speed in km/h (default 40)")
     p.add_argument("--mesh", type=float, default=7.5,
                    help="solid element edge in mm; must divide 180 and 90 (default 7.5)")
-    p.add_argument("--impactor", choices=("cylinder", "sphere"), default="cylinder")
+    p.add_argument("--impactor", choices=("cylinder", "sphere"), default="cylinder",
+                   help="rigid impactor shape (default cylinder)")
     p.add_argument("--edge-radius", type=float, default=5.0,
                    help="rounding radius of the cylinder's face edge in mm (default 5)")
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: long enough for the rebound)")
-    p.add_argument("--friction", type=float, default=0.2, help="impactor-tissue friction")
+    p.add_argument("--friction", type=float, default=0.2,
+                   help="impactor-tissue friction coefficient (default 0.2)")
     p.add_argument("--erode", action=argparse.BooleanOptionalAction, default=None,
                    help="delete collapsed elements (solids: negative volume; shells: area "
                         "below 1 %%) instead of stopping (default: on for hollow, off for "
@@ -41,26 +47,33 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "mass (DT2MS = -DT; default 0 = off; e.g. 0.002 for the hollow "
                         "block); the added mass is reported")
     p.add_argument("--thickness-update", action="store_true",
-                   help="shell thickness follows the membrane strain (ISTUPD 1)")
-    p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
+                   help="shell thickness follows the membrane strain (ISTUPD 1; default: "
+                        "constant thickness)")
+    p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=True,
+                   help="write ParaView states (default: yes)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress display (default: progress shown)")
     g = p.add_argument_group("hollow structure (--structure hollow)")
     g.add_argument("--E", dest="hollow_E", type=float, default=None,
                    help="wall Young's modulus in MPa (default: paper's fit, muscle 100, fat 50)")
     g.add_argument("--yield", dest="hollow_yield", type=float, default=None,
                    help="wall yield stress in MPa (default: paper's fit, muscle 4, fat 2)")
-    g.add_argument("--etan", type=float, default=0.0, help="wall tangent modulus in MPa")
-    g.add_argument("--thickness", type=float, default=1.5, help="wall thickness in mm")
-    g.add_argument("--cell", type=float, default=30.0, help="cell size in mm")
+    g.add_argument("--etan", type=float, default=0.0,
+                   help="wall tangent modulus in MPa (default 0)")
+    g.add_argument("--thickness", type=float, default=1.5,
+                   help="wall thickness in mm (default 1.5)")
+    g.add_argument("--cell", type=float, default=30.0, help="cell size in mm (default 30)")
     g.add_argument("--elements-per-edge", type=int, default=4,
-                   help="shell elements along a cell edge")
+                   help="shell elements along a cell edge (default 4)")
     g.add_argument("--imperfection", type=float, default=None,
                    help="amplitude in mm of the walls' buckling-mode offsets (default 0.1 x "
                         "thickness; 0 gives flat walls)")
-    g.add_argument("--no-mass-preserving", action="store_true",
-                   help="walls keep the tissue density instead of the solid block's mass")
+    g.add_argument("--mass-preserving", action=argparse.BooleanOptionalAction, default=True,
+                   help="walls carry the solid block's mass; --no-mass-preserving keeps the "
+                        "tissue density instead (default: mass preserving)")
     p.add_argument("--compare", action="store_true",
-                   help="run solid and hollow at this speed and overlay their curves")
+                   help="run solid and hollow at this speed and overlay their curves "
+                        "(default: one run)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: block_<structure>_<tissue>_<speed>kmh)")
     p.add_argument("--overwrite", action="store_true",
@@ -84,7 +97,7 @@ def main(args: argparse.Namespace) -> int:
                           hollow_etan=args.etan, thickness=args.thickness, cell=args.cell,
                           elements_per_edge=args.elements_per_edge,
                           imperfection=args.imperfection,
-                          mass_preserving=not args.no_mass_preserving,
+                          mass_preserving=args.mass_preserving,
                           mass_scaling=args.mass_scaling, dtmin=args.dtmin,
                           thickness_update=args.thickness_update)
     except ValueError as exc:
@@ -95,7 +108,7 @@ def main(args: argparse.Namespace) -> int:
         prepare_out_dir(folder, args.overwrite)  # before the deck is written
     if args.compare:
         return _compare(cfg, out, args)
-    res = block_impact(cfg, out, vtk=not args.no_vtk, quiet=args.quiet)
+    res = block_impact(cfg, out, vtk=args.vtk, quiet=args.quiet)
     s = res.summary
     print(f"{s['status']}: {s['reason']}")
     print(f"  peak force {res.curve.peak_force:.3f} kN, max impactor displacement "
@@ -124,7 +137,7 @@ def _compare(cfg, out: Path, args: argparse.Namespace) -> int:
     results = {}
     for structure in ("solid", "hollow"):
         c = replace(cfg, structure=structure)
-        results[structure] = block_impact(c, out / structure, vtk=not args.no_vtk,
+        results[structure] = block_impact(c, out / structure, vtk=args.vtk,
                                           quiet=args.quiet)
     plot([r.curve for r in results.values()], out / "compare.png",
          title=f"block test, {cfg.tissue}, {cfg.speed_kmh:g} km/h: solid vs hollow")

@@ -25,6 +25,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 EXIT_FAILED = 3
@@ -32,8 +33,10 @@ EXIT_FAILED = 3
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("calibrate", help="fit the hollow structure to the solid tissue (GA)",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--tissue", choices=("muscle", "fat"), required=True)
+                       description=plain(__doc__),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--tissue", choices=("muscle", "fat"), required=True,
+                   help="tissue to calibrate (required)")
     p.add_argument("--speeds", default="40",
                    help="impact speeds in km/h, comma-separated (default 40)")
     p.add_argument("--params", default="E,yield",
@@ -41,14 +44,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "thickness (default E,yield)")
     p.add_argument("--bounds", nargs="+", action="extend", default=[], metavar="NAME=LO:HI",
                    help="bounds of a calibrated parameter, e.g. E=20:300 yield=1:10 "
-                        "(MPa; thickness in mm)")
+                        "(MPa; thickness in mm; default: E 10:400, yield 0.5:20, etan 0:50, "
+                        "thickness 0.5:3)")
     p.add_argument("--fix", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="value of a parameter that is not calibrated, e.g. thickness=1.2 "
                         "(default: etan 0 MPa, thickness 1.5 mm)")
     add_ga_options(p)
     add_runner_options(p)
     p.add_argument("--resume", action="store_true",
-                   help="continue the calibration checkpointed in --out")
+                   help="continue the calibration checkpointed in --out (default: start anew)")
     p.add_argument("--mesh", type=float, default=7.5,
                    help="solid element edge in mm, also the hollow walls' element size "
                         "(round(30/mesh) per cell edge); must divide 180 and 90 (default 7.5)")
@@ -57,8 +61,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--cfc", type=float, default=180.0,
                    help="SAE J211 filter class of the contact force in the fitness "
                         "(default 180; 0: no filter)")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
-    p.add_argument("--out", type=Path, required=True, help="output folder")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress display (default: progress shown)")
+    p.add_argument("--out", type=Path, required=True, help="output folder (required)")
     p.set_defaults(func=main)
 
 
@@ -77,7 +82,8 @@ def add_runner_options(p: argparse.ArgumentParser) -> None:
                    help="local worker processes (default: one per CPU; 1: run in this process)")
     g.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of an existing dask scheduler, e.g. tcp://host:8786 "
-                        "(workers need hollowbody and this file system)")
+                        "(workers need hollowbody and this file system; default: a local "
+                        "cluster)")
 
 
 def parse_fixed(items: list[str], calibrated: list[str]) -> dict[str, float]:

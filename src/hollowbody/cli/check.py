@@ -30,9 +30,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "a model summary (counts, parts, masses, extent, critical time steps, unsupported "
         "keywords). Exit code 0: the deck can run; 2: it cannot or it is malformed.")
     p.add_argument("deck", help="LS-DYNA keyword file (.k / .key / .dyn)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (default: a readable summary)")
     p.add_argument("--strict", action="store_true",
-                   help="an unsupported keyword is an error")
+                   help="an unsupported keyword is an error (default: a warning, listed in "
+                        "the summary)")
     p.set_defaults(func=run)
 
 

@@ -18,20 +18,25 @@ import argparse
 from dataclasses import replace
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("demo", help="the paper's section 2.1 end to end (small budget)",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+                       description=plain(__doc__),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", type=Path, default=Path("hollowbody_demo"),
                    help="output folder (default hollowbody_demo)")
     p.add_argument("--quick", action="store_true",
-                   help="an even smaller budget (pipeline smoke test)")
-    p.add_argument("--tissue", choices=("muscle", "fat"), default="muscle")
+                   help="an even smaller budget (pipeline smoke test; default: the default "
+                        "budget)")
+    p.add_argument("--tissue", choices=("muscle", "fat"), default="muscle",
+                   help="tissue of the block (default muscle)")
     p.add_argument("--workers", type=int, default=2,
                    help="local worker processes (default 2; 1: run in this process)")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress display (default: progress shown)")
     p.set_defaults(func=main)
 
 

@@ -16,18 +16,21 @@ import argparse
 import warnings
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("hollowize", help="convert solid soft-tissue parts into hollow shell "
-                       "structures", description=__doc__,
+                       "structures", description=plain(__doc__),
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("deck", type=Path, help="LS-DYNA keyword deck to convert (not modified)")
-    p.add_argument("--out", type=Path, required=True, help="converted deck to write")
+    p.add_argument("--out", type=Path, required=True, help="converted deck to write (required)")
     sel = p.add_mutually_exclusive_group()
-    sel.add_argument("--parts", type=_id_list, default=None, help="part ids, e.g. 3,7,12")
-    sel.add_argument("--part-set", type=int, default=None, help="a *SET_PART id")
+    sel.add_argument("--parts", type=_id_list, default=None,
+                     help="part ids, e.g. 3,7,12 (default: by material type)")
+    sel.add_argument("--part-set", type=int, default=None,
+                     help="a *SET_PART id (default: by material type)")
     sel.add_argument("--material-type", type=int, default=None,
                      help="every solid part with this LS-DYNA material type (default 181)")
     p.add_argument("--cell", type=float, default=30.0, help="cell edge in mm (default 30)")
@@ -41,17 +44,19 @@ def register(sub: argparse._SubParsersAction) -> None:
                      "fit, muscle 100,4 for KM >= 0.1 GPa, fat 50,2 otherwise)")
     mat.add_argument("--calibration", type=Path, default=None,
                      help="calibration.json (best E and yield in MPa; its etan and thickness "
-                     "too when present)")
-    p.add_argument("--etan", type=float, default=0.0, help="wall tangent modulus in MPa")
+                     "too when present; default: none)")
+    p.add_argument("--etan", type=float, default=0.0,
+                   help="wall tangent modulus in MPa (default: the calibration's, else 0)")
     p.add_argument("--grid-axes", choices=("global", "principal"), default="global",
-                   help="grid along the global axes or the part's principal axes")
+                   help="grid along the global axes or the part's principal axes "
+                        "(default global)")
     p.add_argument("--mass-mode", choices=("density", "nodal"), default="density",
                    help="mass in the walls' density (point masses only as a correction) or "
-                   "walls at tissue density plus point masses")
-    p.add_argument("--no-self-contact", action="store_true",
-                   help="do not add a single-surface contact on each converted part")
+                   "walls at tissue density plus point masses (default density)")
+    p.add_argument("--self-contact", action=argparse.BooleanOptionalAction, default=True,
+                   help="add a single-surface contact on each converted part (default: yes)")
     p.add_argument("--report", type=Path, default=None,
-                   help="report file (Markdown; JSON next to it); default NEW_report.md")
+                   help="report file (Markdown; JSON next to it; default NEW_report.md)")
     p.set_defaults(func=run)
 
 
@@ -96,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
                             elements_per_edge=args.elements_per_edge, material=args.material,
                             calibration=args.calibration, etan=args.etan,
                             grid_axes=args.grid_axes, mass_mode=args.mass_mode,
-                            self_contact=not args.no_self_contact)
+                            self_contact=args.self_contact)
     selection = Selection(parts=args.parts, part_set=args.part_set,
                           material_type=args.material_type)
     new, report = hollowize(deck, selection, options)

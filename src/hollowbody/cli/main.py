@@ -9,8 +9,10 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
+import hollowbody
 from hollowbody.errors import UserInputError
 
 #: Subcommand modules (in hollowbody.cli), in help order. A module that is
@@ -24,7 +26,11 @@ def build_parser() -> argparse.ArgumentParser:
         prog="hollowbody",
         description="Explicit FE impact solver with LS-DYNA keyword decks and hollow "
         "soft-tissue structures. Units: mm, ms, kg, kN, GPa.",
+        epilog="Run 'hollowbody COMMAND --help' for the options of a command.",
     )
+    parser.add_argument("--version", action="version",
+                        version=f"hollowbody {hollowbody.__version__}",
+                        help="print the version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name in SUBCOMMANDS:
         try:
@@ -37,7 +43,32 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _silence_stdout() -> None:
+    """Point stdout at the null device, so that flushing it at exit cannot fail again
+    after its reader went away."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # stdout without a file descriptor (captured)
+        pass
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv`` (default: ``sys.argv[1:]``); returns the exit code.
+
+    A reader that closes the output early (``hollowbody rate ... --json | head``)
+    ends the command quietly with exit code 0.
+    """
+    try:
+        code = _dispatch(argv)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _silence_stdout()
+        return 0
+    return code
+
+
+def _dispatch(argv: list[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):

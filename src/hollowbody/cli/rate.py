@@ -37,16 +37,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[ty
     p.add_argument("--method", choices=METHODS, default="both",
                    help="rating method (default: both)")
     p.add_argument("--corridor", metavar="FILE",
-                   help="corridor CSV: polygon (x, y) or bounds (x, lower, upper)")
+                   help="corridor CSV: polygon (x, y) or bounds (x, lower, upper) "
+                   "(default: none)")
     p.add_argument("--columns", nargs=2, metavar=("TIME", "VALUE"),
                    help="time and value column of both curve files, by name or 1-based "
                    "number (default: 1 2)")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    dest="settings",
                    help="change a parameter, e.g. --set K_V=5, --set iso.eps_p=0.1, "
-                   "--set T_MIN=2 (repeatable; prefix cora. or iso. to pick a method)")
-    p.add_argument("--json", action="store_true", help="print the results as JSON")
-    p.add_argument("--plot", metavar="OUT.png", help="save a plot of the curves")
+                   "--set T_MIN=2 (repeatable; prefix cora. or iso. to pick a method; "
+                   "default: the methods' standard parameters)")
+    p.add_argument("--json", action="store_true",
+                   help="print the results as JSON (default: a table)")
+    p.add_argument("--plot", metavar="OUT.png",
+                   help="save a plot of the curves and the corridor (default: no plot)")
     p.set_defaults(func=run)
 
 
@@ -196,7 +200,7 @@ def run(args: argparse.Namespace) -> int:
                               "fraction_inside": corridor.fraction_inside(t_cmp, y_cmp)}
     report = _clean(report)
     if args.plot:
-        _plot(args.plot, report, (t_ref, y_ref), (t_cmp, y_cmp), corridor)
+        _plot(args.plot, report, (t_ref, y_ref), (t_cmp, y_cmp), corridor, columns)
         report["plot"] = args.plot
     if args.json:
         print(json.dumps(report, indent=2))
@@ -207,17 +211,53 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _plot(path: str, report: dict[str, Any], ref: Any, cmp: Any, corridor: Any) -> None:
-    from hollowbody.rating.plot import plot_corridor
+def _column_names(path: str, columns: tuple[Any, ...]) -> list[str]:
+    """Header names of the ``columns`` (names or 1-based numbers) of a CSV file."""
+    from hollowbody.rating.csvio import _column_index, read_table
 
+    table = read_table(path)
+    return [table.header[_column_index(table, c)] for c in columns]
+
+
+def _axis_label(names: list[str]) -> str:
+    """One axis label from the column names of both files (both when they differ)."""
+    unique = list(dict.fromkeys(n for n in names if n))
+    return " / ".join(unique) if unique else "value"
+
+
+def plot_arguments(report: dict[str, Any], ref: Any, cmp: Any, corridor: Any,
+                   columns: tuple[Any, ...], corridor_file: str | None = None
+                   ) -> dict[str, Any]:
+    """Keyword arguments of :func:`hollowbody.rating.plot.corridor_figure` for a rating:
+    axis labels from the CSV headers, the file names in the legend, the ratings as
+    the note."""
+    from pathlib import Path
+
+    ref_names = _column_names(report["reference"], columns)
+    cmp_names = _column_names(report["candidate"], columns)
     note = []
     if "iso18571" in report:
         note.append(f"ISO 18571 R = {report['iso18571']['overall']:.3f}")
     if "cora" in report:
         note.append(f"CORA R = {report['cora']['total']:.3f}")
+    return {"corridor": corridor, "reference": ref, "response": cmp,
+            "reference_label": f"reference: {Path(report['reference']).name}",
+            "response_label": f"candidate: {Path(report['candidate']).name}",
+            "corridor_label": (f"corridor: {Path(corridor_file).name}" if corridor_file
+                               else None),
+            "title": "hollowbody rate",
+            "xlabel": _axis_label([ref_names[0], cmp_names[0]]),
+            "ylabel": _axis_label([ref_names[1], cmp_names[1]]),
+            "note": "\n".join(note)}
+
+
+def _plot(path: str, report: dict[str, Any], ref: Any, cmp: Any, corridor: Any,
+          columns: tuple[Any, ...]) -> None:
+    from hollowbody.rating.plot import plot_corridor
+
+    kwargs = plot_arguments(report, ref, cmp, corridor, columns,
+                            report.get("corridor", {}).get("file"))
     try:
-        plot_corridor(path, corridor=corridor, reference=ref, response=cmp,
-                      response_label="candidate", title="hollowbody rate",
-                      ylabel="value", note="\n".join(note))
+        plot_corridor(path, **kwargs)
     except (OSError, ValueError) as err:
         raise UserInputError(f"{path}: cannot write the plot ({err})") from None

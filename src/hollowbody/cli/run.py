@@ -14,29 +14,39 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.text import plain
+
 EXIT_ERROR_TERMINATION = 3
 EXIT_INTERRUPT = 130
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("run", help="run a keyword deck with the explicit solver",
-                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+                       description=plain(__doc__),
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("deck", type=Path, help="LS-DYNA keyword deck (.k, .key, .dyn)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: <deck name>_out next to the deck)")
     p.add_argument("--overwrite", action="store_true",
-                   help="replace the outputs of an earlier run in --out (else it is refused)")
-    p.add_argument("--end-time", type=float, default=None, help="override ENDTIM (ms)")
+                   help="replace the outputs of an earlier run in --out (default: such a "
+                        "folder is refused)")
+    p.add_argument("--end-time", type=float, default=None,
+                   help="end time in ms (default: the deck's *CONTROL_TERMINATION ENDTIM)")
     p.add_argument("--erode", action="store_true", default=None,
-                   help="delete solids that reach negative volume instead of stopping")
-    p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
-    p.add_argument("--strict", action="store_true", help="unknown keywords are errors")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
+                   help="delete solids that reach negative volume instead of stopping "
+                        "(default: the deck's *CONTROL_TIMESTEP ERODE)")
+    p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=True,
+                   help="write ParaView states (default: --vtk)")
+    p.add_argument("--strict", action="store_true",
+                   help="unknown keywords are errors (default: warnings)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress display (default: progress shown)")
     p.add_argument("--restart", nargs="?", const="newest", default=None, metavar="FILE",
-                   help="resume from a restart file (default: the newest d3dumpNN of --out)")
+                   help="resume from a restart file; without FILE the newest d3dumpNN of --out "
+                        "(default: a new run)")
     p.add_argument("--dump-cycles", type=int, default=None, metavar="N",
                    help="write a restart file every N cycles (overrides "
-                        "*DATABASE_BINARY_D3DUMP; 0 = none)")
+                        "*DATABASE_BINARY_D3DUMP; 0 = none; default: the deck's)")
     p.set_defaults(func=main)
 
 
@@ -54,7 +64,7 @@ def main(args: argparse.Namespace) -> int:
 
     out = args.out or args.deck.with_name(args.deck.stem + "_out")
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
-                      vtk=not args.no_vtk, quiet=args.quiet, strict=args.strict,
+                      vtk=args.vtk, quiet=args.quiet, strict=args.strict,
                       restart=args.restart, dump_cycles=args.dump_cycles,
                       overwrite=args.overwrite)
     print(f"{result.status}: {result.reason}")

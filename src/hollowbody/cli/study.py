@@ -21,30 +21,34 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("study", help="efficiency and stability: solid vs hollow block at "
-                       "several speeds", description=__doc__,
+                       "several speeds", description=plain(__doc__),
                        formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--tissue", choices=("muscle", "fat"), required=True)
+    p.add_argument("--tissue", choices=("muscle", "fat"), required=True,
+                   help="block tissue (required)")
     p.add_argument("--speeds", default="40,70,100",
                    help="impact speeds in km/h, comma-separated (default 40,70,100)")
     p.add_argument("--hollow-from", type=Path, default=None, metavar="CALIBRATION.json",
-                   help="take the hollow walls from a calibration's best candidate")
+                   help="take the hollow walls from a calibration's best candidate "
+                        "(default: the paper's fit)")
     p.add_argument("--mesh", type=float, default=7.5,
                    help="solid element edge in mm, also the hollow walls' element size "
                         "(default 7.5)")
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: the block's)")
-    p.add_argument("--vtk", action="store_true", help="write ParaView states of every run")
+    p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=False,
+                   help="write ParaView states of every run (default: no)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=int, default=1,
                    help="runs at a time (default 1: serial, comparable wall times)")
     g.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                   help="address of an existing dask scheduler")
-    p.add_argument("--out", type=Path, required=True, help="output folder")
+                   help="address of an existing dask scheduler (default: local processes)")
+    p.add_argument("--out", type=Path, required=True, help="output folder (required)")
     p.set_defaults(func=main)
 
 

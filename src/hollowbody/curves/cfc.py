@@ -21,9 +21,17 @@ the FlexPro "CFC Filter Calculation" page (weisang.com) and the J211-compliant
 filter of the MATLAB File Exchange (no. 61852), which both state the forward
 and backward 2-pole pass and the 2.0775 design factor.
 
-Ends: the data are extended by their first and last values before filtering
-(a contact force is zero before the impact), not mirrored, so a steep start
-leaves no offset; the extension is cut off again.
+Ends: a forward-backward filter needs data before the first and after the last
+sample to settle. SAE J211-1 recommends recording pre- and post-event data for
+this or, where a record has none (a simulation that starts at first contact),
+padding the record; here it is extended by its inverted mirror image (odd
+reflection about the first and the last sample, as long as the record itself)
+before filtering and the extension is cut off again. The filtered series then
+starts at the first sample and ends at the last one: a contact force that is
+zero at first contact starts at zero even when a single-cycle contact spike
+follows, instead of starting at the spike smeared back into the time before
+contact. Away from the ends the result is the same as with any other padding
+(the peak of a force pulse in the middle of the record moves by round-off).
 """
 
 from __future__ import annotations
@@ -69,7 +77,9 @@ def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
     The step is the mean step of ``t``. Series shorter than :data:`MIN_SAMPLES`,
     or sampled too coarsely for the class (design frequency 2.0775 x CFC at or
     above :data:`MAX_DESIGN_FRACTION` of the sampling rate), are returned
-    unchanged (a copy). Returns a new (k,) array in the unit of ``y``.
+    unchanged (a copy). The ends are padded by odd reflection (module doc), so
+    the result starts at ``y[0]`` and ends at ``y[-1]``. Returns a new (k,) array
+    in the unit of ``y``.
     """
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -79,4 +89,4 @@ def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
     if not dt_s > 0.0 or DESIGN_RATIO * cfc * dt_s >= MAX_DESIGN_FRACTION:
         return y.copy()
     b, a = j211_coefficients(cfc, dt_s)
-    return filtfilt(b, a, y, padtype="constant")
+    return filtfilt(b, a, y, padtype="odd", padlen=y.size - 1)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -21,19 +21,27 @@ if TYPE_CHECKING:
 Curve = tuple[np.ndarray, np.ndarray]
 
 
-def plot_corridor(path: str | Path, *, corridor: Corridor | None = None,
-                  response: Curve | None = None, specimens: Sequence[Curve] = (),
-                  reference: Curve | None = None, title: str = "",
-                  xlabel: str = "time [ms]", ylabel: str = "force [kN]",
-                  response_label: str = "response", reference_label: str = "reference",
-                  specimen_labels: Sequence[str] | None = None,
-                  note: str = "", dpi: int = 120) -> Path:
-    """Draw a response against a corridor and specimen curves; save as PNG.
+def plot_corridor(path: str | Path, *, dpi: int = 120, **kwargs: Any) -> Path:
+    """Draw a response against a corridor and specimen curves (:func:`corridor_figure`,
+    same keyword arguments) and save it to ``path`` (format from the suffix, PNG
+    recommended) at ``dpi``. Returns the written file."""
+    fig = corridor_figure(**kwargs)
+    out = Path(path)
+    fig.savefig(out, dpi=dpi)
+    return out
+
+
+def corridor_figure(*, corridor: Corridor | None = None,
+                    response: Curve | None = None, specimens: Sequence[Curve] = (),
+                    reference: Curve | None = None, title: str = "",
+                    xlabel: str = "time [ms]", ylabel: str = "force [kN]",
+                    response_label: str = "response", reference_label: str = "reference",
+                    specimen_labels: Sequence[str] | None = None,
+                    corridor_label: str | None = None, note: str = "") -> Figure:
+    """A figure of a response against a corridor and specimen curves.
 
     Parameters
     ----------
-    path : str or Path
-        Output file (format from the suffix, PNG recommended).
     corridor : Corridor, optional
         Drawn as a shaded band (its outline) with its mean line if it has one.
     response : (x, y), optional
@@ -44,13 +52,16 @@ def plot_corridor(path: str | Path, *, corridor: Corridor | None = None,
         A single reference curve (e.g. the test the response is rated against).
     title, xlabel, ylabel : str
         Labels; the defaults suit force-time curves in hollowbody units.
+    response_label, reference_label, specimen_labels, corridor_label : str
+        Legend entries (the corridor's default: its name, else "corridor").
     note : str
-        Text put in the lower right corner (e.g. the ratings).
+        Text put below the axes at the right (e.g. the ratings), clear of the
+        curves and the legend (placed where it covers the least data).
 
     Returns
     -------
-    Path
-        The written file.
+    Figure
+        The matplotlib figure (Agg canvas), laid out.
     """
     fig = Figure(figsize=(7.0, 4.5))
     FigureCanvasAgg(fig)
@@ -58,7 +69,7 @@ def plot_corridor(path: str | Path, *, corridor: Corridor | None = None,
     if corridor is not None:
         ring = corridor.outline
         ax.fill(ring[:, 0], ring[:, 1], color="tab:blue", alpha=0.18, lw=0,
-                label=corridor.name or "corridor")
+                label=corridor_label or corridor.name or "corridor")
         ax.plot(ring[:, 0], ring[:, 1], color="tab:blue", lw=0.8)
         if corridor.center is not None:
             ax.plot(corridor.x, corridor.center, color="tab:blue", ls="--", lw=1.0,
@@ -80,12 +91,10 @@ def plot_corridor(path: str | Path, *, corridor: Corridor | None = None,
         ax.set_title(title)
     ax.grid(True, lw=0.4, alpha=0.6)
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc="best", fontsize=8)
     if note:
-        ax.text(0.99, 0.02, note, transform=ax.transAxes, ha="right", va="bottom",
-                fontsize=8, family="monospace",
-                bbox={"boxstyle": "round", "fc": "white", "ec": "0.7", "alpha": 0.9})
+        ax.annotate(note, xy=(1.0, 0.0), xycoords="axes fraction", xytext=(0.0, -30.0),
+                    textcoords="offset points", ha="right", va="top", fontsize=8,
+                    family="monospace")
     fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=dpi)
-    return out
+    return fig

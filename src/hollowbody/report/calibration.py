@@ -34,7 +34,7 @@ import numpy as np
 from hollowbody.calibrate.reference import read_curve_csv
 from hollowbody.calibrate.wall import WALL_UNITS, effective_wall
 from hollowbody.curves.force_displacement import ForceDisplacement, smoothed
-from hollowbody.curves.plot import clip_force_axis
+from hollowbody.curves.plot import TURN_LABEL, add_legend, clip_force_axis, draw_curve
 
 
 def _plt():
@@ -95,25 +95,27 @@ def plot_overlay(pairs: list[tuple[float, ForceDisplacement, ForceDisplacement |
     fig, axes = plt.subplots(1, n, figsize=(5.6 * n, 4.4), dpi=120, squeeze=False)
     for ax, (speed, solid, hollow) in zip(axes[0], pairs):
         filtered, raw = [], []
+        turn_label: str | None = TURN_LABEL
         for curve, colour, name in ((solid, "C0", "solid"), (hollow, "C3", "hollow")):
             if curve is None or curve.displacement.size < 2:
                 continue
-            ax.plot(curve.displacement, curve.force, color=colour, lw=0.5, alpha=0.35)
             sm = smoothed(curve, cfc)
             filtered.append(sm.force)
             raw.append(curve.force)
             note = ""
             if name == "hollow" and eroded and eroded.get(speed) is not None:
-                note = f", {eroded[speed]} shells eroded"
-            ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
-                    label=f"{name}{f' (CFC {cfc:g})' if cfc else ''}{note}")
+                note = f" ({eroded[speed]} shells eroded)"
+            draw_curve(ax, (curve.displacement, curve.force), (sm.displacement, sm.force),
+                       colour=colour, label=f"{name}{note}", cfc=cfc, show_raw=bool(cfc),
+                       turn_label=turn_label)
+            turn_label = None
         ax.set_xlabel("impactor displacement [mm]")
         ax.set_ylabel("contact force [kN]")
         ax.set_title(f"{speed:g} km/h")
         ax.set_xlim(left=0.0)
         clip_force_axis(ax, filtered, raw)
         ax.grid(True, alpha=0.3)
-        ax.legend()
+        add_legend(ax)
     if title:
         import textwrap
 

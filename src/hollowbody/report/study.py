@@ -24,7 +24,14 @@ from pathlib import Path
 
 from hollowbody.calibrate.study import load_curves
 from hollowbody.curves.force_displacement import smoothed
-from hollowbody.curves.plot import clip_force_axis
+from hollowbody.curves.plot import (
+    RUN_CFC,
+    TURN_LABEL,
+    add_legend,
+    clip_force_axis,
+    draw_curve,
+    filter_label,
+)
 from hollowbody.scenarios.block import THROUGH_BASE
 
 COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",
@@ -32,7 +39,7 @@ COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles"
            "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
            "pass_through_nodes", "outcome")
 HEADERS = ("structure", "speed [km/h]", "status", "reason", "end time [ms]", "cycles",
-           "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (CFC)",
+           "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (filtered)",
            "peak force raw [kN]", "max displacement [mm]", "energy ratio",
            "hourglass [% of total]", "pass-through nodes", "impactor***")
 
@@ -63,7 +70,8 @@ def wall_time_ratios(rows: list[dict]) -> dict[float, float]:
 def study_markdown(rows: list[dict], title: str = "Efficiency and stability study",
                    cfc: float | None = 180.0) -> str:
     """The study table in Markdown with the wall-time ratios and notes."""
-    lines = [f"## {title}", "", "| " + " | ".join(HEADERS) + " |",
+    headers = [h.replace("(filtered)", f"({filter_label(cfc)})") for h in HEADERS]
+    lines = [f"## {title}", "", "| " + " | ".join(headers) + " |",
              "|" + "---|" * len(HEADERS)]
     for r in rows:
         lines.append("| " + " | ".join(_cell(r.get(c)) for c in COLUMNS) + " |")
@@ -75,8 +83,10 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
     else:
         lines.append("Solid/hollow wall-time ratio: no speed where both runs ended normally.")
     filt = f"filtered with the SAE J211 CFC {cfc:g} filter" if cfc else "not filtered"
-    lines += ["", f"\\* shells include the rigid impactor's. Peak force (CFC) is the contact "
-              f"force {filt}; raw peaks include single-cycle contact spikes.",
+    lines += ["", f"\\* shells include the rigid impactor's. Peak force (filtered) is the "
+              f"contact force {filt}; raw peaks include single-cycle contact spikes. The "
+              f"force_displacement.csv/.png of each run folder show that run alone with "
+              f"the run's own {filter_label(RUN_CFC)} filter.",
               "", "\\*\\* elements deleted during the run (erosion is on for the hollow block: "
               "a wall shell crushed until its time step is below DTMIN, 5 % of the initial "
               "step by default, or to 1 % of its area, is removed; off for the solid block, "
@@ -113,52 +123,57 @@ def _plt():
 
 def plot_speed(rows: list[dict], curves: dict, speed: float, path: str | Path,
                cfc: float | None = 180.0) -> None:
-    """Solid vs hollow at one speed (raw faint, filtered bold; status in the legend)."""
+    """Solid vs hollow at one speed (raw faint, filtered bold with the filter class and
+    the run's status in the legend; arrows mark loading and unloading)."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
     status = {(r["structure"], r["speed_kmh"]): r["status"] for r in rows}
     filtered, raw = [], []
+    turn_label: str | None = TURN_LABEL
     for st, colour in (("solid", "C0"), ("hollow", "C3")):
         c = curves.get((st, speed))
         if c is None or c.displacement.size < 2:
             continue
-        ax.plot(c.displacement, c.force, color=colour, lw=0.5, alpha=0.35)
         sm = smoothed(c, cfc)
         filtered.append(sm.force)
         raw.append(c.force)
-        ax.plot(sm.displacement, sm.force, color=colour, lw=2.0,
-                label=f"{st} ({status.get((st, speed), '?')})")
+        draw_curve(ax, (c.displacement, c.force), (sm.displacement, sm.force), colour=colour,
+                   label=f"{st} ({status.get((st, speed), '?')})", cfc=cfc,
+                   show_raw=bool(cfc), turn_label=turn_label)
+        turn_label = None
     ax.set_xlabel("impactor displacement [mm]")
     ax.set_ylabel("contact force [kN]")
     ax.set_title(f"block test at {speed:g} km/h: solid vs hollow")
     ax.set_xlim(left=0.0)
     clip_force_axis(ax, filtered, raw)
     ax.grid(True, alpha=0.3)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend()
+    add_legend(ax)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
 def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0) -> None:
-    """Every curve, filtered: colour by speed, solid line solid, dashed hollow."""
+    """Every curve, filtered: colour by speed, solid line solid, dashed hollow; arrows
+    mark loading and unloading."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
     speeds = sorted({v for _, v in curves})
+    turn_label: str | None = TURN_LABEL
     for (st, v), c in sorted(curves.items(), key=lambda kv: (kv[0][1], kv[0][0])):
         if c.displacement.size < 2:
             continue
         sm = smoothed(c, cfc)
-        ax.plot(sm.displacement, sm.force, color=f"C{speeds.index(v)}",
-                ls="-" if st == "solid" else "--", lw=1.8, label=f"{st} {v:g} km/h")
+        draw_curve(ax, (c.displacement, c.force), (sm.displacement, sm.force),
+                   colour=f"C{speeds.index(v)}", label=f"{st} {v:g} km/h", cfc=cfc,
+                   ls="-" if st == "solid" else "--", show_raw=False, turn_label=turn_label)
+        turn_label = None
     ax.set_xlabel("impactor displacement [mm]")
     ax.set_ylabel("contact force [kN]")
     ax.set_title("block test: all force-displacement curves")
     ax.set_xlim(left=0.0)
     ax.grid(True, alpha=0.3)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8)
+    add_legend(ax)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

@@ -104,3 +104,24 @@ def test_short_or_coarse_series_are_returned_unchanged():
     t = np.arange(100) * 1.0  # 1 kHz sampling: far too coarse for CFC 600
     y = np.sin(t)
     assert np.array_equal(cfc_filter(t, y, 600.0), y)
+
+
+def test_filtered_contact_force_starts_at_the_first_sample():
+    """A force that is zero at first contact and spikes in the next cycles (a
+    first-contact spike, then a slow pulse) keeps its zero start when filtered:
+    the ends are padded by odd reflection, not smeared back into the time before
+    contact. The slow pulse's peak is that of the unpadded filter to round-off."""
+    t = np.arange(0.0, 20.0, 0.02)  # ms, 50 kHz
+    slow = 14.0 * np.sin(np.pi * t / t[-1]) ** 2  # kN, peak 14 kN at 10 ms
+    spike = np.zeros_like(t)
+    spike[1:4] = (41.0, 48.0, 31.0)  # single-cycle contact spike right after contact
+    force = slow + spike
+    for cfc in (180.0, 600.0):
+        y = cfc_filter(t, force, cfc)
+        assert abs(y[0]) < 1e-9 and abs(y[-1]) < 1e-9
+        assert np.max(np.abs(y[:10])) < 0.5 * 48.0  # the spike is smoothed, not kept
+        core = slice(200, 800)
+        assert np.max(y[core]) == pytest.approx(np.max(slow[core]), rel=2e-3)
+    # the first value is the first sample also when it is not zero
+    y = cfc_filter(t, force + 2.5, 180.0)
+    assert y[0] == pytest.approx(2.5, abs=1e-9)
