@@ -77,7 +77,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: block_<structure>_<tissue>_<speed>kmh)")
     p.add_argument("--overwrite", action="store_true",
-                   help="replace the outputs of an earlier run in --out (else it is refused)")
+                   help="replace the outputs of an earlier run in --out (default: such a "
+                        "folder is refused)")
     p.set_defaults(func=main)
 
 
