@@ -11,6 +11,7 @@ from pathlib import Path
 
 from hollowbody.model.model import Model
 from hollowbody.solver.explicit import RunOptions, RunResult, run
+from hollowbody.solver.verdict import Thresholds
 
 
 def load_model(deck: str | Path, strict: bool = False) -> Model:
@@ -24,23 +25,27 @@ def load_model(deck: str | Path, strict: bool = False) -> Model:
 def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
-              dump_cycles: int | None = None) -> RunResult:
+              dump_cycles: int | None = None,
+              quality: Thresholds | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
     ``d3dumpNN`` of ``out_dir``; dump_cycles: cycles between restart files
-    (overrides *DATABASE_BINARY_D3DUMP).
+    (overrides *DATABASE_BINARY_D3DUMP); quality: limits of the run's verdict
+    (``summary["quality"]``; None: the defaults).
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
-                                 dump_cycles=dump_cycles))
+                                 dump_cycles=dump_cycles, quality=quality))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
-             dump_cycles: int | None = None) -> RunResult:
+             dump_cycles: int | None = None,
+             quality: Thresholds | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model`."""
     model = load_model(deck, strict=strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
-                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles)
+                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
+                     quality=quality)

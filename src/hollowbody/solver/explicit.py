@@ -32,6 +32,7 @@ from hollowbody.solver.progress import Progress
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import State, init_state, restore, snapshot
 from hollowbody.solver.step import ERROR, INTERRUPT, NORMAL, Termination, start, step
+from hollowbody.solver.verdict import Thresholds
 
 __all__ = ["ERROR", "INTERRUPT", "NORMAL", "RunOptions", "RunResult", "run"]
 
@@ -49,6 +50,8 @@ class RunOptions:
     restart: resume from this restart file, or from the newest ``d3dumpNN``
     of ``out_dir`` with :data:`NEWEST`; None starts at t = 0.
     dump_cycles: overrides *DATABASE_BINARY_D3DUMP CYCL when given (0 = none).
+    quality: limits of the run's verdict (:mod:`hollowbody.solver.verdict`);
+    None: the defaults.
     """
 
     out_dir: Path
@@ -59,6 +62,7 @@ class RunOptions:
     label: str = "run"
     restart: Path | str | None = None
     dump_cycles: int | None = None
+    quality: Thresholds | None = None
 
 
 @dataclass
@@ -116,7 +120,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         model.output.d3dump_cycles
     state = init_state(model, plan)
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
-                         resume=resume[2]["outputs"] if resume else None)
+                         resume=resume[2]["outputs"] if resume else None,
+                         thresholds=options.quality)
     extra: dict = {"restart_files": []}
     if resume is None:
         outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
