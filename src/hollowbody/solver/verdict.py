@@ -149,17 +149,23 @@ def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, li
     return quality, reasons
 
 
-def quality_of(summary: dict | None, thresholds: Thresholds | None = None) -> str | None:
-    """The summary's ``quality`` (recomputed when the summary predates it); None
-    without a summary."""
+def verdict_of(summary: dict | None) -> tuple[str | None, list[dict]]:
+    """(quality, reasons) of a summary: those it holds, else recomputed with the
+    default thresholds (a summary written before the verdict existed); (None, [])
+    without a summary or energies (e.g. a surrogate's)."""
     if not summary:
-        return None
+        return None, []
     q = summary.get("quality")
     if q in _RANK:
-        return q
+        return q, list(summary.get("quality_reasons") or [])
     if "energies_J" not in summary and "energy_ratio" not in summary:
-        return None
-    return assess(summary, thresholds)[0]
+        return None, []
+    return assess(summary)
+
+
+def quality_of(summary: dict | None) -> str | None:
+    """The quality of :func:`verdict_of`."""
+    return verdict_of(summary)[0]
 
 
 def is_suspect(summary: dict | None) -> bool:
