@@ -131,3 +131,51 @@ def node_effective_mass(nodes: np.ndarray, node_mass: np.ndarray,
                         rigid_node: np.ndarray) -> np.ndarray:
     """Nodal mass for SOFT=1 / damping, (m,) kg; inf for rigid-body nodes."""
     return np.where(rigid_node[nodes], np.inf, node_mass[nodes])
+
+
+def node_areas(nodes: np.ndarray, seg: np.ndarray, x0: np.ndarray) -> np.ndarray:
+    """Mean area (mm^2) of the segments around each node of a surface, (m,); 0 for a
+    node on no segment. On a regular mesh it is the area per node (1 / node density)."""
+    n_total = x0.shape[0]
+    asum = np.zeros(n_total)
+    cnt = np.zeros(n_total)
+    if seg.shape[0]:
+        _, area = segment_normals(seg, x0)
+        valid = np.ones(seg.shape, dtype=bool)
+        valid[:, 3] = seg[:, 3] != seg[:, 2]
+        np.add.at(asum, seg[valid], np.broadcast_to(area[:, None], seg.shape)[valid])
+        np.add.at(cnt, seg[valid], 1.0)
+    c = cnt[nodes]
+    out = np.zeros(nodes.shape[0])
+    out[c > 0] = asum[nodes][c > 0] / c[c > 0]
+    return out
+
+
+def density_capped(n_k: np.ndarray, n_mass: np.ndarray, n_area: np.ndarray,
+                   s_k: np.ndarray, s_mass: np.ndarray, s_area: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Node stiffness (kN/mm) and SOFT=1 mass (kg) of a pass, capped to the share of
+    the opposite segments a node covers: ``n_area / s_area`` of their stiffness and
+    mass per unit area (the largest over the segments).
+
+    Every node on a segment gets its own penalty spring. With a mesh much finer than
+    the segments it presses (a 4 mm impactor on 30 mm wall shells: 56 nodes per
+    segment) the springs add up to 56 times the segment's stiffness, far beyond the
+    stability bound of its nodes for the time step, and the contact creates energy.
+    Capped, the springs of the nodes on a segment add up to the segment's own
+    stiffness whatever the two meshes are. A node coarser than the segments, or
+    with no area (node sets), keeps its values.
+    """
+    n_k = n_k.copy()
+    n_mass = n_mass.copy()
+    ok = (s_area > 0.0) & (s_k > 0.0)
+    if ok.any():
+        cap = n_area * float((s_k[ok] / s_area[ok]).max())
+        hit = (n_area > 0.0) & (cap < n_k)
+        n_k[hit] = cap[hit]
+    ok = (s_area > 0.0) & np.isfinite(s_mass) & (s_mass > 0.0)
+    if ok.any():
+        cap = n_area * float((s_mass[ok] / s_area[ok]).max())
+        hit = (n_area > 0.0) & (cap < n_mass)
+        n_mass[hit] = cap[hit]
+    return n_k, n_mass
