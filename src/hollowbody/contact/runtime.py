@@ -61,8 +61,6 @@ from hollowbody.contact.penalty import (
     scatter_pass,
 )
 from hollowbody.contact.stiffness import (
-    density_capped,
-    node_areas,
     node_effective_mass,
     node_stiffness,
     segment_mass,
@@ -73,7 +71,6 @@ from hollowbody.contact.surface import (
     Surface,
     build_surface,
     model_surface,
-    segment_normals,
 )
 from hollowbody.contact.tied.links import tied_links
 from hollowbody.errors import UserInputError
@@ -285,15 +282,10 @@ class ContactRuntime:
         loc[self.nodes] = np.arange(self.nodes.shape[0])
 
         def mk_pass(nsurf: Surface, nk, ssurf: Surface, segk, sdep, sf_n, sf_s, sign):
-            n_k = sf_n * nk
-            n_m = node_effective_mass(nsurf.nodes, node_mass, rigid_node)
-            s_k = sf_s * segk
-            s_m = segment_mass(ssurf.seg, node_mass, rigid_node)
-            if sign != 0.0 and nsurf.n_segments and ssurf.n_segments:  # two meshes
-                n_k, n_m = density_capped(n_k, n_m, node_areas(nsurf.nodes, nsurf.seg, x0),
-                                          s_k, s_m, segment_normals(ssurf.seg, x0)[1])
-            p = _Pass(loc[nsurf.nodes], nsurf.node_thick, n_k, n_m,
-                      loc[ssurf.seg], ssurf.seg_thick, s_k, s_m, sdep,
+            p = _Pass(loc[nsurf.nodes], nsurf.node_thick, sf_n * nk,
+                      node_effective_mass(nsurf.nodes, node_mass, rigid_node),
+                      loc[ssurf.seg], ssurf.seg_thick, sf_s * segk,
+                      segment_mass(ssurf.seg, node_mass, rigid_node), sdep,
                       (ssurf.seg_kind != SEG_SOLID).astype(np.int8), sign)
             p.seg_eid, p.seg_pid = segment_elements(ssurf, model)
             return p
