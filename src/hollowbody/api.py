@@ -11,6 +11,7 @@ from pathlib import Path
 
 from hollowbody.model.model import Model
 from hollowbody.solver.explicit import RunOptions, RunResult, run
+from hollowbody.solver.verdict import Thresholds
 
 
 def load_model(deck: str | Path, strict: bool = False) -> Model:
@@ -40,7 +41,7 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
               dump_cycles: int | None = None, overwrite: bool = False,
-              inputs: tuple[Path, ...] = ()) -> RunResult:
+              inputs: tuple[Path, ...] = (), quality: Thresholds | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
@@ -48,20 +49,22 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
     (overrides *DATABASE_BINARY_D3DUMP). An ``out_dir`` holding an earlier run
     is refused (UserInputError) unless ``overwrite``, which deletes that run's
     outputs first (never the ``inputs`` files); a restart resumes into it.
+    quality: limits of the run's verdict (``summary["quality"]``; None: the defaults).
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
                                  dump_cycles=dump_cycles, overwrite=overwrite,
-                                 inputs=tuple(inputs)))
+                                 inputs=tuple(inputs), quality=quality))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
-             dump_cycles: int | None = None, overwrite: bool = False) -> RunResult:
+             dump_cycles: int | None = None, overwrite: bool = False,
+             quality: Thresholds | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model` (the deck and its includes are
     the run's ``inputs``)."""
     model, files = _read_for_run(deck, strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
                      label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
-                     overwrite=overwrite, inputs=files)
+                     overwrite=overwrite, inputs=files, quality=quality)

@@ -17,14 +17,14 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from hollowbody.calibrate.simulate import ERROR, NORMAL
+from hollowbody.calibrate.simulate import ERROR, NORMAL, SUSPECT
 
 #: Statuses of records that are stored (finished, repeatable results).
-CACHED_STATUSES = (NORMAL, ERROR)
+CACHED_STATUSES = (NORMAL, ERROR, SUSPECT)
 
 
 def cacheable(record: dict) -> bool:
-    """True for a finished evaluation (normal or error termination)."""
+    """True for a finished evaluation (normal or error termination, or a suspect run)."""
     return record.get("status") in CACHED_STATUSES
 
 

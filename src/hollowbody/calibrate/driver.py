@@ -46,7 +46,7 @@ from hollowbody.calibrate.ga import GASettings, GeneticSearch, ReplayError
 from hollowbody.calibrate.progress import CalibrationProgress
 from hollowbody.calibrate.reference import ensure_references
 from hollowbody.calibrate.runner import SerialRunner
-from hollowbody.calibrate.simulate import EXCEPTION, INTERRUPT, LOST, NORMAL
+from hollowbody.calibrate.simulate import EXCEPTION, INTERRUPT, LOST, NORMAL, SUSPECT
 from hollowbody.calibrate.space import ParameterSpace
 from hollowbody.curves.force_displacement import ForceDisplacement
 from hollowbody.errors import UserInputError
@@ -153,7 +153,8 @@ def _gen_stats(generation: int, records: list[dict], best_so_far: float | None) 
     return {"generation": generation, "evaluations": len(records),
             "best": best_so_far, "generation_best": min(ok) if ok else None,
             "mean": float(np.mean(ok)) if ok else None,
-            "failed": sum(r["status"] != NORMAL for r in records)}
+            "failed": sum(r["status"] != NORMAL for r in records),
+            "suspect": sum(r["status"] == SUSPECT for r in records)}
 
 
 def _run_dir_name(params: dict[str, float]) -> str:

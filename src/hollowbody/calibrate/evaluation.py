@@ -2,19 +2,22 @@
 
 :func:`evaluate_candidate` runs in a worker process (or in-process) and never
 raises for a bad candidate: a run ending in error termination, or a Python
-exception, becomes a record with a penalty fitness and its reason. A record::
+exception, becomes a record with a penalty fitness and its reason; so does a
+run that ends normally with a ``suspect`` verdict (status ``"suspect run"``,
+:mod:`hollowbody.solver.verdict`: its curve is not trusted). A record::
 
     {"key": "E=100.0,yield=4.0", "context": "3f2a...", "params": {"E": 100.0, ...},
      "fitness": 0.0123, "status": "normal termination", "reason": "",
      "wall_seconds": 12.3,
      "runs": [{"speed_kmh": 40.0, "status": ..., "reason": ..., "fitness": ...,
                "wall_seconds": ..., "cycles": ..., "peak_force_kN": ...,
-               "max_displacement_mm": ..., "eroded_elements": ..., "run_dir": ...}, ...]}
+               "max_displacement_mm": ..., "eroded_elements": ..., "quality": "ok",
+               "run_dir": ...}, ...]}
 
 The fitness of a record is the sum over speeds of
 :func:`~hollowbody.calibrate.fitness.curve_distance`, or
-``penalty * len(speeds)`` when any run fails (the remaining speeds are then
-skipped).
+``penalty * len(speeds)`` when any run fails or is suspect (the remaining
+speeds are then skipped).
 """
 
 from __future__ import annotations
@@ -28,8 +31,10 @@ from pathlib import Path
 from typing import Any
 
 from hollowbody.calibrate.fitness import FitnessSettings, curve_distance
-from hollowbody.calibrate.simulate import EXCEPTION, NORMAL
+from hollowbody.calibrate.simulate import EXCEPTION, NORMAL, SUSPECT
 from hollowbody.curves.force_displacement import ForceDisplacement, smoothed, write_csv
+from hollowbody.solver.verdict import SUSPECT as SUSPECT_QUALITY
+from hollowbody.solver.verdict import headline, quality_of, verdict_of
 
 
 def speed_dir(speed_kmh: float) -> str:
@@ -111,7 +116,8 @@ def _run_entry(speed: float, out, cfc: float | None) -> dict:
             "fitness": None, "wall_seconds": finite_or_none(out.wall_seconds),
             "cycles": int(out.cycles), "peak_force_kN": finite_or_none(peak),
             "max_displacement_mm": finite_or_none(curve.max_displacement),
-            "eroded_elements": eroded_count(out.summary), "run_dir": out.run_dir}
+            "eroded_elements": eroded_count(out.summary),
+            "quality": quality_of(out.summary), "run_dir": out.run_dir}
 
 
 def evaluate_candidate(task: CandidateTask) -> dict:
@@ -132,6 +138,10 @@ def evaluate_candidate(task: CandidateTask) -> dict:
             runs.append(entry)
             if out.status != NORMAL:
                 status, reason = out.status, f"{speed:g} km/h: {out.reason}"
+                break
+            if entry["quality"] == SUSPECT_QUALITY:
+                verdict = headline(*verdict_of(out.summary))
+                status, reason = SUSPECT, f"{speed:g} km/h: {verdict}"
                 break
             f = curve_distance(task.references[speed], out.curve, task.fitness)
             entry["fitness"] = f

@@ -35,6 +35,9 @@ INTERRUPT = "user interrupt"
 EXCEPTION = "exception"
 #: Status of an evaluation whose worker was lost for good (not cached).
 LOST = "lost"
+#: Status of an evaluation with a run that ended normally but whose verdict is
+#: ``suspect`` (:mod:`hollowbody.solver.verdict`): failed, penalised, never the best.
+SUSPECT = "suspect run"
 
 #: File in a run folder that receives the run's console output (warnings).
 CONSOLE_LOG = "console.log"

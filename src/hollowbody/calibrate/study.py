@@ -9,7 +9,7 @@ a row::
      "hexahedra": 6912, "shells": 960, "peak_force_kN": 21.3,
      "peak_force_raw_kN": 80.1, "max_displacement_mm": 60.2, "eroded_elements": 0,
      "energy_ratio": 1.0, "hourglass_percent": 3.9, "pass_through_nodes": 0,
-     "run_dir": "..."}
+     "quality": "ok", "quality_reasons": "", "run_dir": "..."}
 
 Element counts are the run's (the rigid impactor's shells included);
 ``eroded_elements`` is the number of elements the run deleted (the hollow
@@ -19,7 +19,10 @@ report it). Peak forces are CFC-filtered
 contact spikes included). Quality indicators from the run's summary:
 ``energy_ratio`` (total / initial energy at the end), ``hourglass_percent``
 (hourglass energy in % of the total at the end) and ``pass_through_nodes``
-(nodes the contacts reported pushed through a surface).
+(nodes the contacts reported pushed through a surface); ``quality`` the run's
+verdict (ok / warning / suspect, :mod:`hollowbody.solver.verdict`) with its
+reasons in one line. A suspect run's curve is not trusted: it is flagged in
+every table and plot and left out of the wall-time ratios.
 Runs go through a runner (:mod:`hollowbody.calibrate.runner`): serial by
 default, so wall times are those of one run on the whole machine; with N
 workers they are those of one single-threaded run sharing the machine. The
@@ -47,6 +50,7 @@ from hollowbody.calibrate.simulate import EXCEPTION, LOST
 from hollowbody.curves.force_displacement import smoothed
 from hollowbody.errors import UserInputError
 from hollowbody.scenarios.block import impact_outcome
+from hollowbody.solver.verdict import verdict_of
 
 STRUCTURES = ("solid", "hollow")
 
@@ -69,7 +73,8 @@ def _empty_row(task: StudyTask, status: str, reason: str) -> dict:
             "cycles": None, "wall_seconds": None, "hexahedra": None, "shells": None,
             "peak_force_kN": None, "peak_force_raw_kN": None, "max_displacement_mm": None,
             "eroded_elements": None, "energy_ratio": None, "hourglass_percent": None,
-            "pass_through_nodes": None, "outcome": None, "run_dir": task.run_dir}
+            "pass_through_nodes": None, "outcome": None, "quality": None,
+            "quality_reasons": None, "run_dir": task.run_dir}
 
 
 def run_study_task(task: StudyTask) -> dict:
@@ -101,6 +106,9 @@ def run_study_task(task: StudyTask) -> dict:
                 "pass_through_nodes": pass_through_nodes(s),
                 "outcome": impact_outcome(finite_or_none(curve.max_displacement)),
                 "run_dir": out.run_dir})
+    quality, reasons = verdict_of(s)
+    row["quality"] = quality
+    row["quality_reasons"] = "; ".join(r["message"] for r in reasons) if quality else None
     if out.run_dir is None:
         return row
     csv = rd / "force_displacement.csv"

@@ -174,7 +174,8 @@ def main(args: argparse.Namespace) -> int:
     files = write_report(out)
     wall = effective_wall(result.data)
     if wall is None:
-        print(f"no candidate ended normally; see {out / 'calibration.json'}")
+        print(f"no candidate ended normally with a sound run (error terminations and "
+              f"suspect runs count as failed); see {out / 'calibration.json'}")
         return EXIT_FAILED
     print("best: " + ", ".join(f"{k} {v:g} {WALL_UNITS[k]}" for k, v in wall.items())
           + f"; fitness {result.best_fitness:.4g} ({len(result.evaluations)} evaluations, "

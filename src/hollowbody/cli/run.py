@@ -47,6 +47,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--dump-cycles", type=int, default=None, metavar="N",
                    help="write a restart file every N cycles (overrides "
                         "*DATABASE_BINARY_D3DUMP; 0 = none; default: the deck's)")
+    p.add_argument("--quality", action="append", default=None, metavar="KEY=VALUE",
+                   help="a limit of the run's quality verdict, e.g. hourglass_warn=0.15 "
+                        "(repeatable; see docs/solver.md)")
     p.set_defaults(func=main)
 
 
@@ -61,16 +64,24 @@ def exit_code(status: str) -> int:
 
 def main(args: argparse.Namespace) -> int:
     from hollowbody.api import run_deck
+    from hollowbody.errors import UserInputError
+    from hollowbody.solver.verdict import Thresholds, headline
 
+    try:
+        thresholds = Thresholds.parse(args.quality)
+    except ValueError as exc:
+        raise UserInputError(f"--quality: {exc}") from None
     out = args.out or args.deck.with_name(args.deck.stem + "_out")
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
                       vtk=args.vtk, quiet=args.quiet, strict=args.strict,
                       restart=args.restart, dump_cycles=args.dump_cycles,
-                      overwrite=args.overwrite)
+                      overwrite=args.overwrite, quality=thresholds)
     print(f"{result.status}: {result.reason}")
     print(f"  {result.cycles} cycles, end time {result.end_time_ms:.6g} ms, wall "
           f"{result.summary.get('wall_seconds', 0.0):.2f} s, energy ratio "
           f"{_fmt(result.summary.get('energy_ratio'))}; outputs in {out}")
+    quality = result.summary.get("quality", "ok")
+    print(f"{result.status} - {headline(quality, result.summary.get('quality_reasons', []))}")
     return exit_code(result.status)
 
 

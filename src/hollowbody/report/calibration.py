@@ -63,10 +63,12 @@ def plot_convergence(history: list[dict], path: str | Path, title: str = "") -> 
     ax.plot(g, best, "o-", lw=1.8, label="best so far")
     ax.plot(g, mean, "s--", lw=1.2, label="generation mean (normal terminations)")
     failed = [h.get("failed", 0) for h in history]
+    suspect = [h.get("suspect", 0) for h in history]
     if any(failed):
-        for gi, fi, bi in zip(g, failed, best):
+        for gi, fi, si, bi in zip(g, failed, suspect, best):
             if fi:
-                ax.annotate(f"{fi} failed", (gi, bi), textcoords="offset points",
+                text = f"{fi} failed" + (f" ({si} suspect)" if si else "")
+                ax.annotate(text, (gi, bi), textcoords="offset points",
                             xytext=(0, -14), ha="center", fontsize=7)
     if use_log_scale(best + mean):
         ax.set_yscale("log")

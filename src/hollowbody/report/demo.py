@@ -114,7 +114,8 @@ def index_markdown(out: Path, budget: DemoBudget, sim_description: dict, cal_dat
                    runner_description: str) -> str:
     """The demo's index page (Markdown with relative links)."""
     wall = effective_wall(cal_data)
-    best = ("no candidate ended normally" if wall is None else
+    best = ("no candidate ended normally with a sound run (error terminations and "
+            "suspect runs count as failed)" if wall is None else
             ", ".join(f"{k} = {v:g} {WALL_UNITS[k]}" for k, v in wall.items()))
     speeds = ", ".join(f"{v:g}" for v in budget.calibration_speeds)
     f_best = cal_data.get("best_fitness")

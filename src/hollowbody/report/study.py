@@ -34,11 +34,12 @@ from hollowbody.curves.plot import (
 )
 from hollowbody.scenarios.block import THROUGH_BASE
 
-COLUMNS = ("structure", "speed_kmh", "status", "reason", "end_time_ms", "cycles",
+COLUMNS = ("structure", "speed_kmh", "status", "quality", "reason", "end_time_ms", "cycles",
            "wall_seconds", "hexahedra", "shells", "eroded_elements", "peak_force_kN",
            "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
            "pass_through_nodes", "outcome")
-HEADERS = ("structure", "speed [km/h]", "status", "reason", "end time [ms]", "cycles",
+HEADERS = ("structure", "speed [km/h]", "status", "quality****", "reason", "end time [ms]",
+           "cycles",
            "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (filtered)",
            "peak force raw [kN]", "max displacement [mm]", "energy ratio",
            "hourglass [% of total]", "pass-through nodes", "impactor***")
@@ -52,8 +53,18 @@ def _cell(v: object) -> str:
     return str(v).replace("|", "/")
 
 
+def _quality_cell(r: dict) -> str:
+    q = r.get("quality")
+    if q is None:
+        return "n/a"
+    why = r.get("quality_reasons")
+    text = "**SUSPECT**" if q == "suspect" else str(q)
+    return _cell(f"{text}: {why}" if why and q != "ok" else text)
+
+
 def wall_time_ratios(rows: list[dict]) -> dict[float, float]:
-    """{speed: solid wall s / hollow wall s} where both ended normally."""
+    """{speed: solid wall s / hollow wall s} where both ended normally (and neither
+    is suspect)."""
     by = {(r["structure"], r["speed_kmh"]): r for r in rows}
     out = {}
     for (st, v), r in sorted(by.items(), key=lambda kv: kv[0][1]):
@@ -61,6 +72,7 @@ def wall_time_ratios(rows: list[dict]) -> dict[float, float]:
             continue
         h = by.get(("hollow", v))
         if (h and r["status"] == "normal termination" and h["status"] == "normal termination"
+                and "suspect" not in (r.get("quality"), h.get("quality"))
                 and r["wall_seconds"] and h["wall_seconds"]
                 and THROUGH_BASE not in (r.get("outcome"), h.get("outcome"))):
             out[v] = r["wall_seconds"] / h["wall_seconds"]
@@ -74,7 +86,8 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
     lines = [f"## {title}", "", "| " + " | ".join(headers) + " |",
              "|" + "---|" * len(HEADERS)]
     for r in rows:
-        lines.append("| " + " | ".join(_cell(r.get(c)) for c in COLUMNS) + " |")
+        lines.append("| " + " | ".join(_quality_cell(r) if c == "quality" else _cell(r.get(c))
+                                       for c in COLUMNS) + " |")
     ratios = wall_time_ratios(rows)
     lines.append("")
     if ratios:
@@ -100,7 +113,11 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
               "base: the force peak is the base's), through the base (travel beyond the "
               "height + 5 mm: fixed base nodes were pushed through the impactor's contact "
               "surface; the curve after that is not valid and the run is left out of the "
-              "wall-time ratio)."]
+              "wall-time ratio).",
+              "", "\\*\\*\\*\\* the run's verdict (energy balance, hourglass and negative "
+              "contact energy, time-step collapse, added mass, pass-through; see the solver "
+              "documentation): ok, warning, or **SUSPECT** (its curve is not trusted and the "
+              "run is left out of the wall-time ratio), with the reasons."]
     return "\n".join(lines) + "\n"
 
 
@@ -127,7 +144,8 @@ def plot_speed(rows: list[dict], curves: dict, speed: float, path: str | Path,
     the run's status in the legend; arrows mark loading and unloading)."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 4.6), dpi=120)
-    status = {(r["structure"], r["speed_kmh"]): r["status"] for r in rows}
+    status = {(r["structure"], r["speed_kmh"]): r["status"]
+              + (", SUSPECT" if r.get("quality") == "suspect" else "") for r in rows}
     filtered, raw = [], []
     turn_label: str | None = TURN_LABEL
     for st, colour in (("solid", "C0"), ("hollow", "C3")):
@@ -153,9 +171,13 @@ def plot_speed(rows: list[dict], curves: dict, speed: float, path: str | Path,
     plt.close(fig)
 
 
-def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0) -> None:
+def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0,
+             rows: list[dict] | None = None) -> None:
     """Every curve, filtered: colour by speed, solid line solid, dashed hollow; arrows
-    mark loading and unloading."""
+    mark loading and unloading; with the study ``rows``, suspect runs are marked in the
+    legend."""
+    suspect = {(r["structure"], r["speed_kmh"]): r.get("quality") == "suspect"
+               for r in rows or ()}
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7.0, 4.8), dpi=120)
     speeds = sorted({v for _, v in curves})
@@ -165,8 +187,10 @@ def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0) -> None:
             continue
         sm = smoothed(c, cfc)
         draw_curve(ax, (c.displacement, c.force), (sm.displacement, sm.force),
-                   colour=f"C{speeds.index(v)}", label=f"{st} {v:g} km/h", cfc=cfc,
-                   ls="-" if st == "solid" else "--", show_raw=False, turn_label=turn_label)
+                   colour=f"C{speeds.index(v)}",
+                   label=f"{st} {v:g} km/h" + (" (SUSPECT)" if suspect.get((st, v)) else ""),
+                   cfc=cfc, ls="-" if st == "solid" else "--", show_raw=False,
+                   turn_label=turn_label)
         turn_label = None
     ax.set_xlabel("impactor displacement [mm]")
     ax.set_ylabel("contact force [kN]")
@@ -191,6 +215,6 @@ def write_study_report(rows: list[dict], out_dir: str | Path,
         p = out / f"fd_{v:g}kmh.png"
         plot_speed(rows, curves, v, p, cfc)
         files[f"fd_{v:g}kmh"] = p
-    plot_all(curves, out / "fd_all.png", cfc)
+    plot_all(curves, out / "fd_all.png", cfc, rows)
     files["fd_all"] = out / "fd_all.png"
     return files

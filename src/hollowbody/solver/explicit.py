@@ -33,6 +33,7 @@ from hollowbody.solver.progress import Progress
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import State, init_state, restore, snapshot
 from hollowbody.solver.step import ERROR, INTERRUPT, NORMAL, Termination, start, step
+from hollowbody.solver.verdict import Thresholds
 
 __all__ = ["ERROR", "INTERRUPT", "NORMAL", "RunOptions", "RunResult", "run"]
 
@@ -52,6 +53,8 @@ class RunOptions:
     dump_cycles: overrides *DATABASE_BINARY_D3DUMP CYCL when given (0 = none).
     overwrite: an ``out_dir`` holding an earlier run is cleared first (else refused);
     inputs: files the run reads (the deck and its includes), never deleted.
+    quality: limits of the run's verdict (:mod:`hollowbody.solver.verdict`);
+    None: the defaults.
     """
 
     out_dir: Path
@@ -64,6 +67,7 @@ class RunOptions:
     dump_cycles: int | None = None
     overwrite: bool = False
     inputs: tuple[Path, ...] = ()
+    quality: Thresholds | None = None
 
 
 @dataclass
@@ -161,7 +165,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         model.output.d3dump_cycles
     state = init_state(model, plan)
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
-                         resume=resume[2]["outputs"] if resume else None)
+                         resume=resume[2]["outputs"] if resume else None,
+                         thresholds=options.quality)
     extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model)}
     if resume is None:
         outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "

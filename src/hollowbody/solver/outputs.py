@@ -27,6 +27,7 @@ import numpy as np
 from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
 from hollowbody.solver.energies import energies, node_velocity_full_step
+from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
 DEFAULT_HISTORY_COUNT = 500
 DEFAULT_STATE_COUNT = 20
@@ -58,8 +59,9 @@ class RunOutputs:
     """
 
     def __init__(self, out: Path, model, asm, end_time: float, vtk: bool = True,
-                 resume: dict | None = None) -> None:
+                 resume: dict | None = None, thresholds: Thresholds | None = None) -> None:
         self.out = Path(out)
+        self.thresholds = thresholds or Thresholds()
         self.model = model
         self.asm = asm
         self.end_time = end_time
@@ -267,9 +269,15 @@ class RunOutputs:
                 for c in self.asm.contacts if hasattr(c, "n_filters")},
             **(extra or {}),
         }
+        quality, reasons = assess(summary, self.thresholds)
+        summary["quality"] = quality
+        summary["quality_reasons"] = reasons
+        summary["quality_thresholds"] = self.thresholds.to_dict()
         (self.out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json))
         level = logging.INFO if status == "normal termination" else logging.ERROR
         self.log(f"{status}: {reason}; {state.cycle} cycles, wall {wall:.2f} s", level)
+        self.log(f"{status} - {headline(quality, reasons)}",
+                 logging.INFO if quality == OK else logging.WARNING)
         for name in HISTORIES:
             getattr(self, name).close()
         for h in list(self.logger.handlers):

@@ -80,6 +80,7 @@ def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
     """Velocities to t^{n+1/2} and positions to t^{n+1} (steps 1-3 of the cycle)."""
     x, v, f = state.x, state.v, state.f
     cons = plan.constraints
+    v_old = v[cons.prescribed_nodes]
     v_free = v + dt_avg * f * state.inv_m[:, None]
     v[:] = v_free
     if plan.has_rotations:
@@ -96,8 +97,11 @@ def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
     cons.apply_nodes(v, x, state.t, dt)
     pn = cons.prescribed_nodes
     if pn.size:
+        # reaction impulse m (v^{n+1/2} - v_free) times the node's displacement
+        # (x^{n+1} - x^{n-1}) / 2 per unit step: the mean of v^{n-1/2} and v^{n+1/2}
         dv = v[pn] - v_free[pn]
-        state.ext_work += float((state.node_mass[pn, None] * dv * v[pn]).sum())
+        state.ext_work += float((state.node_mass[pn, None] * dv
+                                 * 0.5 * (v_old + v[pn])).sum())
     x_old_rigid = [x[b.nodes].copy() for b in plan.bodies]
     x += dt * v
     for body, xr in zip(plan.bodies, x_old_rigid):

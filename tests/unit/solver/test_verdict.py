@@ -1,0 +1,118 @@
+"""The run verdict from a summary: every indicator at its warning and suspect limits."""
+
+from __future__ import annotations
+
+import pytest
+
+from hollowbody.solver.verdict import (
+    OK,
+    SUSPECT,
+    WARNING,
+    Thresholds,
+    assess,
+    headline,
+    quality_of,
+    verdict_of,
+)
+
+
+def _summary(**over) -> dict:
+    """A sound run's summary: 10 J in, balance kept, little hourglass, nothing else."""
+    s = {"energy_ratio": 1.0, "nodes": 1000, "dt_initial_ms": 1e-3, "dt_min_ms": 0.5e-3,
+         "energies_J": {"kinetic": 2.0, "internal": 7.5, "hourglass": 0.3, "contact": 0.2,
+                        "total": 10.0},
+         "mass_scaling": {"added_mass_percent": 0.0},
+         "contact_pass_through": {"1": {"events": 0, "nodes": 0}}}
+    for k, v in over.items():
+        if k in ("kinetic", "internal", "hourglass", "contact", "total"):
+            s["energies_J"][k] = v
+        else:
+            s[k] = v
+    return s
+
+
+def _indicators(summary: dict, th: Thresholds | None = None) -> dict[str, str]:
+    return {r["indicator"]: r["level"] for r in assess(summary, th)[1]}
+
+
+def test_a_sound_run_is_ok():
+    assert assess(_summary()) == (OK, [])
+    assert headline(OK, []) == "quality ok"
+
+
+@pytest.mark.parametrize("ratio, level", [(1.05, None), (0.95, None), (1.15, WARNING),
+                                          (0.85, WARNING), (1.25, SUSPECT), (0.7, SUSPECT),
+                                          (10.05, SUSPECT)])
+def test_energy_ratio_bands(ratio, level):
+    assert _indicators(_summary(energy_ratio=ratio)).get("energy_ratio") == level
+
+
+@pytest.mark.parametrize("hg, level", [(0.7, None), (1.0, WARNING), (3.0, SUSPECT)])
+def test_hourglass_share_of_internal_energy(hg, level):
+    # internal 7.5 J: 0.7 J = 9 %, 1.0 J = 13 %, 3.0 J = 40 %
+    assert _indicators(_summary(hourglass=hg)).get("hourglass") == level
+
+
+def test_hourglass_negligible_against_the_total_is_not_flagged():
+    # 50 % of a tiny internal energy, but 0.5 % of the energy of the run
+    assert "hourglass" not in _indicators(_summary(internal=0.1, hourglass=0.05))
+
+
+def test_hourglass_without_internal_energy_is_suspect():
+    assert _indicators(_summary(internal=0.0, hourglass=1.0))["hourglass"] == SUSPECT
+
+
+@pytest.mark.parametrize("ce, level", [(-0.1, None), (-0.5, WARNING), (-2.3, SUSPECT),
+                                       (0.5, None)])
+def test_negative_contact_energy(ce, level):
+    assert _indicators(_summary(contact=ce)).get("contact_energy") == level
+
+
+@pytest.mark.parametrize("dtmin, level", [(0.02e-3, None), (0.5e-5, WARNING),
+                                          (0.5e-6, SUSPECT)])
+def test_time_step_collapse(dtmin, level):
+    assert _indicators(_summary(dt_min_ms=dtmin)).get("time_step") == level
+
+
+@pytest.mark.parametrize("pct, level", [(1.0, None), (4.4, WARNING), (7.3, SUSPECT)])
+def test_added_mass(pct, level):
+    s = _summary(mass_scaling={"added_mass_percent": pct})
+    assert _indicators(s).get("added_mass") == level
+
+
+@pytest.mark.parametrize("nodes, level", [(0, None), (1, WARNING), (10, WARNING),
+                                          (11, SUSPECT)])
+def test_pass_through(nodes, level):
+    # 1000 nodes: any node through a surface warns, more than 1 % is suspect
+    s = _summary(contact_pass_through={"1": {"events": nodes, "nodes": nodes}})
+    assert _indicators(s).get("pass_through") == level
+
+
+def test_the_worst_indicator_decides_and_the_headline_lists_it_first():
+    s = _summary(energy_ratio=10.05, hourglass=8.0, mass_scaling={"added_mass_percent": 3.0})
+    quality, reasons = assess(s)
+    assert quality == SUSPECT
+    assert [r["level"] for r in reasons] == [SUSPECT, SUSPECT, WARNING]
+    text = headline(quality, reasons)
+    assert text.startswith("SUSPECT: energy ratio 10.1, hourglass 107 % of internal energy")
+    assert "also mass scaling added 3 % mass" in text
+
+
+def test_thresholds_are_overridable_and_parsed():
+    th = Thresholds.parse(["energy_ratio_warn=0.01", "hourglass_suspect = 2"])
+    assert th.energy_ratio_warn == 0.01 and th.hourglass_suspect == 2.0
+    assert _indicators(_summary(energy_ratio=1.03), th)["energy_ratio"] == WARNING
+    assert _indicators(_summary(hourglass=3.0), th)["hourglass"] == WARNING
+    with pytest.raises(ValueError, match="unknown quality threshold"):
+        Thresholds.parse(["energy_band=0.1"])
+    with pytest.raises(ValueError, match="not a number"):
+        Thresholds.parse(["hourglass_warn=high"])
+
+
+def test_a_summary_without_a_verdict_is_assessed_and_one_with_it_is_kept():
+    s = _summary(energy_ratio=2.0)
+    assert quality_of(s) == SUSPECT
+    kept = {**_summary(), "quality": WARNING, "quality_reasons": [{"message": "x"}]}
+    assert verdict_of(kept) == (WARNING, [{"message": "x"}])
+    assert quality_of(None) is None
+    assert quality_of({"status": "normal termination", "surrogate": True}) is None
