@@ -49,7 +49,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "*DATABASE_BINARY_D3DUMP; 0 = none; default: the deck's)")
     p.add_argument("--quality", action="append", default=None, metavar="KEY=VALUE",
                    help="a limit of the run's quality verdict, e.g. hourglass_warn=0.15 "
-                        "(repeatable; see docs/solver.md)")
+                        "(repeatable; default: the limits in docs/solver.md)")
     p.set_defaults(func=main)
 
 
