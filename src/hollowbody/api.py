@@ -24,23 +24,28 @@ def load_model(deck: str | Path, strict: bool = False) -> Model:
 def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
-              dump_cycles: int | None = None) -> RunResult:
+              dump_cycles: int | None = None,
+              threads: int | str | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
     ``d3dumpNN`` of ``out_dir``; dump_cycles: cycles between restart files
-    (overrides *DATABASE_BINARY_D3DUMP).
+    (overrides *DATABASE_BINARY_D3DUMP); threads: numba threads of the run, at
+    most N or ``"auto"`` (see :mod:`hollowbody.solver.threads`); None keeps
+    numba's current count.
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
-                                 dump_cycles=dump_cycles))
+                                 dump_cycles=dump_cycles, threads=threads))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
-             dump_cycles: int | None = None) -> RunResult:
+             dump_cycles: int | None = None,
+             threads: int | str | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model`."""
     model = load_model(deck, strict=strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
-                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles)
+                     label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
+                     threads=threads)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.errors import UserInputError
 
 
@@ -44,6 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="shell thickness follows the membrane strain (ISTUPD 1)")
     p.add_argument("--no-vtk", action="store_true", help="do not write ParaView states")
     p.add_argument("--quiet", action="store_true", help="no progress display")
+    add_threads_argument(p)
     g = p.add_argument_group("hollow structure (--structure hollow)")
     g.add_argument("--E", dest="hollow_E", type=float, default=None,
                    help="wall Young's modulus in MPa (default: paper's fit, muscle 100, fat 50)")
@@ -63,7 +65,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="run solid and hollow at this speed and overlay their curves")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: block_<structure>_<tissue>_<speed>kmh)")
-    p.set_defaults(func=main)
+    p.set_defaults(func=with_threads(main))
 
 
 def main(args: argparse.Namespace) -> int:

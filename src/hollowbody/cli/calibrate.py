@@ -25,6 +25,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.errors import UserInputError
 
 EXIT_FAILED = 3
@@ -59,7 +60,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(default 180; 0: no filter)")
     p.add_argument("--quiet", action="store_true", help="no progress display")
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
 
 
 def add_ga_options(p: argparse.ArgumentParser, population: int = 16,

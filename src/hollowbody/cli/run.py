@@ -4,11 +4,16 @@ Exit codes: 0 normal termination, 2 bad input (nothing run), 3 error
 termination (negative volume, DTMIN, non-finite numbers; outputs kept),
 130 user interrupt (outputs kept). With ``--restart`` the run resumes from
 the newest restart file (``d3dumpNN``) of the output folder, or the one given.
+``--threads auto`` (the default) runs small models on one thread and larger
+ones on the cores the rest of the machine leaves idle; ``--threads N`` on at
+most N.
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
+from collections.abc import Callable
 from pathlib import Path
 
 EXIT_ERROR_TERMINATION = 3
@@ -32,7 +37,36 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--dump-cycles", type=int, default=None, metavar="N",
                    help="write a restart file every N cycles (overrides "
                         "*DATABASE_BINARY_D3DUMP; 0 = none)")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
+
+
+def add_threads_argument(p: argparse.ArgumentParser) -> None:
+    """The ``--threads N|auto`` option of the commands that run the solver."""
+    p.add_argument("--threads", default="auto", metavar="N|auto",
+                   help="numba threads of the solver: at most N, or auto (default: one "
+                        "thread for small models, else the idle cores)")
+
+
+def with_threads(func: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
+    """``func`` (a command's main) with ``--threads`` as the setting of every run it
+    makes, restored afterwards (UserInputError when it is neither a positive integer
+    nor auto)."""
+    @functools.wraps(func)
+    def main(args: argparse.Namespace) -> int:
+        from hollowbody.errors import UserInputError
+        from hollowbody.solver import threads
+
+        old = threads.default()
+        try:
+            threads.set_default(getattr(args, "threads", "auto"))
+        except ValueError as exc:
+            raise UserInputError(str(exc)) from None
+        try:
+            return func(args)
+        finally:
+            threads.set_default(old)
+    return main
 
 
 def exit_code(status: str) -> int:

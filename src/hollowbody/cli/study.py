@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.errors import UserInputError
 
 
@@ -45,7 +46,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of an existing dask scheduler")
     p.add_argument("--out", type=Path, required=True, help="output folder")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
 
 
 def main(args: argparse.Namespace) -> int:
