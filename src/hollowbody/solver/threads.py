@@ -5,14 +5,24 @@ the count it started with, ``NUMBA_NUM_THREADS``, by default the number of
 cores), ``"auto"`` (the policy below) or None (leave numba's current count,
 e.g. one set with ``numba.set_num_threads`` by the caller).
 
-The ``auto`` policy: one thread for a model below :data:`AUTO_MIN_WORK`
-elements plus contact slave nodes (too small for the threaded kernels to pay
-their start-up, see the ``PARALLEL_MIN`` thresholds of the kernels), and no more
-threads than the cores left idle by the rest of the machine (one-minute load
-average; a thread that has to share its core with another process slows every
-other thread down at each synchronisation). With numba's OpenMP layer the
-command line also sets ``OMP_WAIT_POLICY=passive`` unless it is set already,
-so waiting threads sleep instead of spinning on a busy machine.
+The ``auto`` policy:
+
+- one thread for a model below :data:`AUTO_MIN_WORK` elements plus contact
+  nodes (too small for the threaded kernels to pay their start-up, see the
+  ``PARALLEL_MIN`` thresholds of the kernels);
+- else every thread numba can run, when waiting threads sleep: numba's OpenMP
+  layer with ``OMP_WAIT_POLICY=passive``, which is set (unless the environment
+  sets it) before numba starts its threads, or another threading layer;
+- else (OpenMP threads already started with the spinning default) no more
+  threads than the cores the rest of the machine leaves idle (one-minute load
+  average): a spinning thread that shares its core with another process
+  holds up the others at every synchronisation, and two threads then run
+  several times slower than one.
+
+On the 2-core machine of BENCHMARKS.md the passive wait policy is what makes
+two threads pay on a busy machine: the block test (solid, 40 km/h, 4 ms) with a
+second process keeping one core busy took 18.7 s on one thread, 60 s on two
+spinning threads and 11.3 s on two passive ones.
 
 The command line uses ``auto`` (``--threads N|auto``); the Python API keeps
 the caller's count unless ``threads`` is given. The count used is recorded in
@@ -25,7 +35,7 @@ import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-#: Elements plus contact slave nodes below which ``auto`` runs on one thread.
+#: Elements plus contact nodes below which ``auto`` runs on one thread.
 AUTO_MIN_WORK = 4096
 #: Setting used by runs that do not give one (see :func:`set_default`).
 _default: int | str | None = None
@@ -33,10 +43,33 @@ _default: int | str | None = None
 
 def set_default(setting: int | str | None) -> None:
     """Threads setting of runs that give none (the command line sets ``auto`` or
-    ``--threads``); also sets the passive OpenMP wait policy unless given."""
+    ``--threads``); also asks for the passive OpenMP wait policy."""
     global _default
     _default = parse(setting) if setting is not None else None
+    passive_wait()
+
+
+def _threads_started() -> bool:
+    from numba.np.ufunc import parallel
+
+    return bool(getattr(parallel, "_is_initialized", True))
+
+
+def passive_wait() -> bool:
+    """Whether numba's waiting threads sleep instead of spinning.
+
+    Sets ``OMP_WAIT_POLICY=passive`` when the environment does not set it and
+    numba has not started its threads yet (OpenMP reads it at start-up only).
+    """
+    import numba
+
+    if _threads_started():
+        if numba.threading_layer() != "omp":
+            return True  # tbb and workqueue threads sleep while they wait
+        return os.environ.get("OMP_WAIT_POLICY", "").strip().lower() == "passive"
     os.environ.setdefault("OMP_WAIT_POLICY", "passive")
+    return os.environ["OMP_WAIT_POLICY"].strip().lower() == "passive" or \
+        numba.config.THREADING_LAYER in ("tbb", "workqueue")
 
 
 def default() -> int | str | None:
@@ -81,19 +114,22 @@ def idle_cores(cores: int | None = None, load: float | None = None) -> int:
     return max(1, min(cores, int(cores - load + 0.5)))
 
 
-def auto_threads(work: int, limit: int, idle: int) -> int:
-    """The ``auto`` policy: 1 below :data:`AUTO_MIN_WORK`, else ``min(limit, idle)``.
+def auto_threads(work: int, limit: int, idle: int, passive: bool = True) -> int:
+    """The ``auto`` policy: 1 below :data:`AUTO_MIN_WORK`; else ``limit`` when
+    waiting threads sleep (passive), ``min(limit, idle)`` when they spin.
 
-    work: elements plus contact slave nodes of the model; limit: most threads
-    numba can run; idle: cores not used by other processes.
+    work: elements plus contact nodes of the model; limit: most threads numba
+    can run; idle: cores not used by other processes.
     """
     if work < AUTO_MIN_WORK:
         return 1
+    if passive:
+        return max(1, limit)
     return max(1, min(limit, idle))
 
 
 def model_work(plan) -> int:  # noqa: ANN001 - solver.setup.Assembly
-    """Elements plus contact slave nodes of a run's plan (what the threaded kernels
+    """Elements plus contact nodes of a run's plan (what the threaded kernels
     loop over)."""
     n = int(sum(plan.element_counts().values()))
     for c in plan.contacts:
@@ -112,13 +148,13 @@ def resolve(setting: int | str | None, work: int) -> tuple[int, str]:
     setting = parse(setting)
     limit = available_threads()
     if setting == "auto":
-        idle = idle_cores()
-        n = auto_threads(work, limit, idle)
         if work < AUTO_MIN_WORK:
-            why = f"auto: small model ({work} elements and contact nodes < {AUTO_MIN_WORK})"
-        else:
-            why = f"auto: {limit} available, {idle} idle core(s)"
-        return n, why
+            return 1, f"auto: small model ({work} elements and contact nodes < {AUTO_MIN_WORK})"
+        if passive_wait():
+            return auto_threads(work, limit, limit), f"auto: {limit} available, passive wait"
+        idle = idle_cores()
+        return (auto_threads(work, limit, idle, passive=False),
+                f"auto: {limit} available, spinning wait, {idle} idle core(s)")
     if setting > limit:
         return limit, f"{setting} requested, {limit} available (NUMBA_NUM_THREADS)"
     return setting, "requested"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 
 import numba
 import pytest
@@ -32,10 +33,35 @@ def test_parse_accepts_auto_and_positive_integers():
 
 
 def test_auto_is_one_thread_below_the_size_where_threads_pay():
-    assert th.auto_threads(th.AUTO_MIN_WORK - 1, limit=8, idle=8) == 1
-    assert th.auto_threads(th.AUTO_MIN_WORK, limit=8, idle=8) == 8
-    assert th.auto_threads(10**6, limit=2, idle=8) == 2  # no more than numba can run
-    assert th.auto_threads(10**6, limit=8, idle=3) == 3  # no more than the idle cores
+    for passive in (True, False):
+        assert th.auto_threads(th.AUTO_MIN_WORK - 1, limit=8, idle=8, passive=passive) == 1
+        assert th.auto_threads(th.AUTO_MIN_WORK, limit=8, idle=8, passive=passive) == 8
+        assert th.auto_threads(10**6, limit=2, idle=8, passive=passive) == 2  # numba's most
+
+
+def test_auto_spinning_threads_only_on_idle_cores():
+    assert th.auto_threads(10**6, limit=8, idle=3, passive=False) == 3
+    assert th.auto_threads(10**6, limit=2, idle=1, passive=False) == 1
+    assert th.auto_threads(10**6, limit=2, idle=1, passive=True) == 2  # sleeping threads
+
+
+def test_auto_on_a_large_model_follows_the_wait_policy(monkeypatch):
+    monkeypatch.setattr(th, "available_threads", lambda: 2)
+    monkeypatch.setattr(th, "idle_cores", lambda: 1)
+    monkeypatch.setattr(th, "passive_wait", lambda: True)
+    assert th.resolve("auto", 10**6) == (2, "auto: 2 available, passive wait")
+    monkeypatch.setattr(th, "passive_wait", lambda: False)
+    n, why = th.resolve("auto", 10**6)
+    assert n == 1 and "spinning" in why
+
+
+def test_passive_wait_reads_the_policy_omp_started_with(monkeypatch):
+    monkeypatch.setattr(th, "_threads_started", lambda: False)
+    monkeypatch.delenv("OMP_WAIT_POLICY", raising=False)
+    assert th.passive_wait() is True
+    assert os.environ["OMP_WAIT_POLICY"] == "passive"  # set before the threads start
+    monkeypatch.setenv("OMP_WAIT_POLICY", "active")
+    assert th.passive_wait() is (numba.config.THREADING_LAYER in ("tbb", "workqueue"))
 
 
 def test_idle_cores_counts_the_load_of_the_rest_of_the_machine():
