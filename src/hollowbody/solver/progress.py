@@ -74,6 +74,7 @@ class Progress:
         self._bar = None
         self._task = None
         self._streams: list = []
+        self._latest: tuple[float, int, float] | None = None
 
     def __enter__(self) -> Progress:
         now = time.monotonic()
@@ -139,6 +140,7 @@ class Progress:
     def update(self, t: float, cycle: int, dt: float, force: bool = False) -> None:
         """After each cycle: log a line when due (and print it when stdout is not a
         terminal), redraw the bar."""
+        self._latest = (t, cycle, dt)
         now = time.monotonic()
         if force or now - self._last_line >= self.interval:
             self._last_line = now
@@ -159,6 +161,10 @@ class Progress:
             h.setStream(old)
         self._streams.clear()
         if self.enabled and self._bar is not None:
+            if self._latest is not None:  # the bar ends where the run ended
+                t, cycle, dt = self._latest
+                self._bar.update(self._task, completed=min(t, self.end_time), t=t,
+                                 cycle=cycle, dt=dt)
             self._bar.__exit__(None, None, None)
 
 

@@ -126,3 +126,12 @@ def test_warnings_print_through_the_bar_console(monkeypatch):
         assert h.stream is __import__("sys").__stderr__
     finally:
         logger.removeHandler(h)
+
+
+def test_the_bar_ends_at_the_last_cycle():
+    with Progress(1.0, tty=True) as p:
+        p._bar.console.file = io.StringIO()
+        for k in range(1, 51):  # faster than the bar's refresh interval
+            p.update(0.02 * k, k, 0.02)
+        task = p._bar.tasks[0]
+    assert task.completed == pytest.approx(1.0) and task.fields["cycle"] == 50
