@@ -11,8 +11,9 @@ The ``auto`` policy:
   nodes (too small for the threaded kernels to pay their start-up, see the
   ``PARALLEL_MIN`` thresholds of the kernels);
 - else every thread numba can run, when waiting threads sleep: numba's OpenMP
-  layer with ``OMP_WAIT_POLICY=passive``, which is set (unless the environment
-  sets it) before numba starts its threads, or another threading layer;
+  layer with ``OMP_WAIT_POLICY=passive``, which every run sets (unless the
+  environment sets it) when numba has not started its threads yet, or another
+  threading layer;
 - else (OpenMP threads already started with the spinning default) no more
   threads than the cores the rest of the machine leaves idle (one-minute load
   average): a spinning thread that shares its core with another process
@@ -143,6 +144,7 @@ def resolve(setting: int | str | None, work: int) -> tuple[int, str]:
     """Thread count of a run and why: (n, reason)."""
     import numba
 
+    passive = passive_wait()  # before numba starts its threads (the run's first kernel)
     if setting is None:
         return int(numba.get_num_threads()), "as set"
     setting = parse(setting)
@@ -150,7 +152,7 @@ def resolve(setting: int | str | None, work: int) -> tuple[int, str]:
     if setting == "auto":
         if work < AUTO_MIN_WORK:
             return 1, f"auto: small model ({work} elements and contact nodes < {AUTO_MIN_WORK})"
-        if passive_wait():
+        if passive:
             return auto_threads(work, limit, limit), f"auto: {limit} available, passive wait"
         idle = idle_cores()
         return (auto_threads(work, limit, idle, passive=False),
