@@ -5,8 +5,8 @@ termination (negative volume, DTMIN, non-finite numbers; outputs kept),
 130 user interrupt (outputs kept). With ``--restart`` the run resumes from
 the newest restart file (``d3dumpNN``) of the output folder, or the one given.
 ``--threads auto`` (the default) runs small models on one thread and larger
-ones on the cores the rest of the machine leaves idle; ``--threads N`` on at
-most N.
+ones on every core (see :mod:`hollowbody.solver.threads`); ``--threads N`` on
+at most N.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ def add_threads_argument(p: argparse.ArgumentParser) -> None:
     """The ``--threads N|auto`` option of the commands that run the solver."""
     p.add_argument("--threads", default="auto", metavar="N|auto",
                    help="numba threads of the solver: at most N, or auto (default: one "
-                        "thread for small models, else the idle cores)")
+                        "thread for small models, else every core)")
 
 
 def with_threads(func: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
