@@ -116,7 +116,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         header, payload = rs.read_dump(path, model)
         resume = (path, header, payload)
     wall0 = time.perf_counter()
-    plan = assemble(model)  # set-up errors (DeckError) before anything is written
+    with CompileWatch() as setup_compile:  # the set-up's own kernels
+        plan = assemble(model)  # set-up errors (DeckError) before anything is written
     try:
         setting = options.threads if options.threads is not None else th.default()
         n_threads, threads_why = th.resolve(setting, th.model_work(plan))
@@ -146,7 +147,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     complete = True  # the State is that of a whole cycle (a dump of it can be resumed)
     progress = Progress(end_time, quiet=options.quiet, label=options.label,
                         interval=options.progress_interval, log=outputs.log)
-    watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."))
+    watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."),
+                         seconds=setup_compile.seconds, count=setup_compile.count)
     with _Stop() as stop, th.using(n_threads), watch:
         try:
             with progress:

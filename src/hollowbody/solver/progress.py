@@ -171,19 +171,22 @@ class Progress:
 class CompileWatch:
     """Context manager listening to numba's compile events.
 
-    on_first: called once, when the first kernel starts compiling; ``seconds``:
-    wall time spent compiling (outermost compilations only, so a kernel and the
-    functions it calls count once); ``count``: kernels compiled.
+    on_first: called when the first kernel inside the block starts compiling;
+    ``seconds``: wall time spent compiling (outermost compilations only, so a
+    kernel and the functions it calls count once); ``count``: kernels compiled;
+    both start from the given values (what an earlier watch counted).
     """
 
-    def __init__(self, on_first: Callable[[], None] | None = None) -> None:
+    def __init__(self, on_first: Callable[[], None] | None = None, seconds: float = 0.0,
+                 count: int = 0) -> None:
         self.on_first = on_first
-        self.seconds = 0.0
-        self.count = 0
+        self.seconds = seconds
+        self.count = count
         self._depth = 0
         self._t0 = 0.0
         self._cm = None
         self._thread = 0
+        self._seen = False
 
     @property
     def compiled(self) -> bool:
@@ -213,8 +216,9 @@ class CompileWatch:
         if self._depth == 0:
             self._t0 = time.perf_counter()
             self.count += 1
-            if self.count == 1 and self.on_first is not None:
+            if not self._seen and self.on_first is not None:
                 self.on_first()
+            self._seen = True
         self._depth += 1
 
     def _end(self) -> None:
