@@ -41,7 +41,8 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
               dump_cycles: int | None = None, overwrite: bool = False,
-              inputs: tuple[Path, ...] = (), quality: Thresholds | None = None) -> RunResult:
+              inputs: tuple[Path, ...] = (), quality: Thresholds | None = None,
+              threads: int | str | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
@@ -50,21 +51,24 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
     is refused (UserInputError) unless ``overwrite``, which deletes that run's
     outputs first (never the ``inputs`` files); a restart resumes into it.
     quality: limits of the run's verdict (``summary["quality"]``; None: the defaults).
+    threads: numba threads of the run, at most N or ``"auto"`` (see
+    :mod:`hollowbody.solver.threads`); None keeps numba's current count.
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
                                  dump_cycles=dump_cycles, overwrite=overwrite,
-                                 inputs=tuple(inputs), quality=quality))
+                                 inputs=tuple(inputs), quality=quality, threads=threads))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
              dump_cycles: int | None = None, overwrite: bool = False,
-             quality: Thresholds | None = None) -> RunResult:
+             quality: Thresholds | None = None,
+             threads: int | str | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model` (the deck and its includes are
     the run's ``inputs``)."""
     model, files = _read_for_run(deck, strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
                      label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
-                     overwrite=overwrite, inputs=files, quality=quality)
+                     overwrite=overwrite, inputs=files, quality=quality, threads=threads)

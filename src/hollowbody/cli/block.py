@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -53,6 +54,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="write ParaView states (default: yes)")
     p.add_argument("--quiet", action="store_true",
                    help="no progress display (default: progress shown)")
+    add_threads_argument(p)
     g = p.add_argument_group("hollow structure (--structure hollow)")
     g.add_argument("--E", dest="hollow_E", type=float, default=None,
                    help="wall Young's modulus in MPa (default: paper's fit, muscle 100, fat 50)")
@@ -79,7 +81,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true",
                    help="replace the outputs of an earlier run in --out (default: such a "
                         "folder is refused)")
-    p.set_defaults(func=main)
+    p.set_defaults(func=with_threads(main))
 
 
 def main(args: argparse.Namespace) -> int:

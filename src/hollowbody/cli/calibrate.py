@@ -25,6 +25,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -64,7 +65,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--quiet", action="store_true",
                    help="no progress display (default: progress shown)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
 
 
 def add_ga_options(p: argparse.ArgumentParser, population: int = 16,

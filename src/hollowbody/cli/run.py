@@ -7,11 +7,16 @@ the newest restart file (``d3dumpNN``) of the output folder, or the one given.
 An output folder holding an earlier run is refused unless ``--overwrite``, which
 deletes that run's outputs first (histories, states, log, summary, restart
 files; never the deck or its includes).
+``--threads auto`` (the default) runs small models on one thread and larger
+ones on every core (see :mod:`hollowbody.solver.threads`); ``--threads N`` on
+at most N.
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
+from collections.abc import Callable
 from pathlib import Path
 
 from hollowbody.cli.text import plain
@@ -50,7 +55,36 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--quality", action="append", default=None, metavar="KEY=VALUE",
                    help="a limit of the run's quality verdict, e.g. hourglass_warn=0.15 "
                         "(repeatable; default: the limits in docs/solver.md)")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
+
+
+def add_threads_argument(p: argparse.ArgumentParser) -> None:
+    """The ``--threads N|auto`` option of the commands that run the solver."""
+    p.add_argument("--threads", default="auto", metavar="N|auto",
+                   help="numba threads of the solver: at most N, or auto (default: one "
+                        "thread for small models, else every core)")
+
+
+def with_threads(func: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
+    """``func`` (a command's main) with ``--threads`` as the setting of every run it
+    makes, restored afterwards (UserInputError when it is neither a positive integer
+    nor auto)."""
+    @functools.wraps(func)
+    def main(args: argparse.Namespace) -> int:
+        from hollowbody.errors import UserInputError
+        from hollowbody.solver import threads
+
+        old = threads.default()
+        try:
+            threads.set_default(getattr(args, "threads", "auto"))
+        except ValueError as exc:
+            raise UserInputError(str(exc)) from None
+        try:
+            return func(args)
+        finally:
+            threads.set_default(old)
+    return main
 
 
 def exit_code(status: str) -> int:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -49,7 +50,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of an existing dask scheduler (default: local processes)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
-    p.set_defaults(func=main)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(main))
 
 
 def main(args: argparse.Namespace) -> int:

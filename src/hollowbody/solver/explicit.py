@@ -24,12 +24,14 @@ from pathlib import Path
 
 import numpy as np
 
+from hollowbody.errors import UserInputError
 from hollowbody.model.summary import unsupported_entries, unsupported_lines
 from hollowbody.solver import restart as rs
+from hollowbody.solver import threads as th
 from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
 from hollowbody.solver.outputs import RunOutputs
-from hollowbody.solver.progress import Progress
+from hollowbody.solver.progress import COMPILE_NOTICE, LINE_INTERVAL, CompileWatch, Progress
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import State, init_state, restore, snapshot
 from hollowbody.solver.step import ERROR, INTERRUPT, NORMAL, Termination, start, step
@@ -55,6 +57,11 @@ class RunOptions:
     inputs: files the run reads (the deck and its includes), never deleted.
     quality: limits of the run's verdict (:mod:`hollowbody.solver.verdict`);
     None: the defaults.
+    threads: numba threads, an integer (at most), ``"auto"`` or None (the
+    process default, :func:`hollowbody.solver.threads.set_default`; unset: numba's
+    current count); see :mod:`hollowbody.solver.threads`.
+    progress_interval: seconds of wall time between progress lines (stdout when
+    it is not a terminal, and messages.log).
     """
 
     out_dir: Path
@@ -68,6 +75,8 @@ class RunOptions:
     overwrite: bool = False
     inputs: tuple[Path, ...] = ()
     quality: Thresholds | None = None
+    threads: int | str | None = None
+    progress_interval: float = LINE_INTERVAL
 
 
 @dataclass
@@ -154,7 +163,13 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         header, payload = rs.read_dump(path, model)
         resume = (path, header, payload)
     wall0 = time.perf_counter()
-    plan = assemble(model)  # set-up errors (DeckError) before anything is written
+    with CompileWatch() as setup_compile:  # the set-up's own kernels
+        plan = assemble(model)  # set-up errors (DeckError) before anything is written
+    try:
+        setting = options.threads if options.threads is not None else th.default()
+        n_threads, threads_why = th.resolve(setting, th.model_work(plan))
+    except ValueError as exc:
+        raise UserInputError(str(exc)) from None
     if resume is None:  # a restart continues the folder's run
         prepare_out_dir(out, options.overwrite, options.inputs)
     out.mkdir(parents=True, exist_ok=True)
@@ -167,7 +182,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
                          resume=resume[2]["outputs"] if resume else None,
                          thresholds=options.quality)
-    extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model)}
+    extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model),
+                   "threads": n_threads}
     if resume is None:
         outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
                     f"{plan.element_counts()} ; end time {end_time:g} ms; erosion "
@@ -179,15 +195,24 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                 outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
         if plan.ties is not None:  # [tied] set-up messages (hollowbody.contact.tied)
             plan.ties.log(lambda lvl, msg: outputs.log(msg, getattr(logging, lvl.upper())))
+    outputs.log(f"numba threads: {n_threads} ({threads_why})")
     status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
     complete = True  # the State is that of a whole cycle (a dump of it can be resumed)
-    with _Stop() as stop:
+    progress = Progress(end_time, quiet=options.quiet, label=options.label,
+                        interval=options.progress_interval, log=outputs.log)
+    watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."),
+                         seconds=setup_compile.seconds, count=setup_compile.count)
+    with _Stop() as stop, th.using(n_threads), watch:
         try:
-            with Progress(end_time, quiet=options.quiet, label=options.label) as progress:
+            with progress:
+                progress.attach(outputs.logger)
                 if resume is None:
                     _start(model, plan, state, outputs)
                 else:
                     _resume(model, plan, state, outputs, resume, end_time, extra)
+                if watch.compiled:
+                    progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
+                progress.begin(state.t)
                 _loop(model, plan, state, outputs, progress, stop, end_time, dump_cycles,
                       extra)
         except Termination as term:
@@ -195,6 +220,7 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         except KeyboardInterrupt:
             complete = False
             status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
+    extra["compile_seconds"] = round(watch.seconds, 3)
     if status != NORMAL and state.cycle > 0:
         _final_dump(model, state, outputs, extra, complete)
     wall = time.perf_counter() - wall0
