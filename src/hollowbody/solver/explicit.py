@@ -19,6 +19,7 @@ import logging
 import signal
 import threading
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -163,7 +164,10 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         header, payload = rs.read_dump(path, model)
         resume = (path, header, payload)
     wall0 = time.perf_counter()
-    with CompileWatch() as setup_compile:  # the set-up's own kernels
+    # the set-up's own kernels; its warnings (material checks) go to the run log as one
+    # line each instead of Python warnings with source paths
+    with CompileWatch() as setup_compile, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         plan = assemble(model)  # set-up errors (DeckError) before anything is written
     try:
         setting = options.threads if options.threads is not None else th.default()
@@ -190,6 +194,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                     f"{'on' if plan.erode else 'off'}")
         for line in unsupported_lines(model):
             outputs.log(line, logging.WARNING)
+        for w in caught:
+            outputs.log(str(w.message), logging.WARNING)
         for rt in plan.elements:
             for w in getattr(rt, "warnings", []) or []:
                 outputs.log(f"part {rt.pid}: {w}", logging.WARNING)

@@ -71,3 +71,19 @@ def test_check_rejects_what_the_run_set_up_rejects_with_the_same_message(tmp_pat
     assert code == 2
     assert problem in capsys.readouterr().err
     assert not (tmp_path / "run").exists()  # nothing written for a deck that cannot run
+
+
+def test_set_up_warnings_are_log_lines_not_python_warnings(tmp_path, capsys):
+    """The MAT_181 stability check of hand_check.k's curve 10 warns: on `run` it is one
+    line in messages.log and on the console, not a Python warning with a source path."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a Python warning would fail the run here
+        code = cli_main(["run", str(DECKS / "hand_check.k"), "--out", str(tmp_path / "run"),
+                         "--quiet", "--no-vtk", "--end-time", "0.01"])
+    err = capsys.readouterr().err
+    assert code == 0
+    assert "UserWarning" not in err and "Baker-Ericksen" in err
+    log = (tmp_path / "run" / "messages.log").read_text()
+    assert log.count("Baker-Ericksen") == 1
