@@ -2,7 +2,7 @@
 
 Shown: generation, evaluations done / planned, best fitness so far, failed
 evaluations and an estimate of the time left (from the evaluations run in
-this session; cached ones count as done and cost nothing).
+this run; cached ones count as done and cost nothing).
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ class CalibrationProgress:
             self.best = f if self.best is None else min(self.best, f)
 
     def eta_seconds(self) -> float | None:
-        """Seconds left at this session's rate of evaluations run (None: unknown)."""
+        """Seconds left at this run's rate of evaluations run (None: unknown)."""
         if self._run_here == 0:
             return None
         rate = (time.perf_counter() - self._t0) / self._run_here
