@@ -105,7 +105,7 @@ def main(args: argparse.Namespace) -> int:
                           thickness_update=args.thickness_update)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
-    from hollowbody.solver.explicit import prepare_out_dir
+    from hollowbody.solver.outputs import prepare_out_dir
 
     for folder in (out / "solid", out / "hollow") if args.compare else (out,):
         prepare_out_dir(folder, args.overwrite)  # before the deck is written

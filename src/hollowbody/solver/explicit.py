@@ -31,7 +31,7 @@ from hollowbody.solver import restart as rs
 from hollowbody.solver import threads as th
 from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
-from hollowbody.solver.outputs import RunOutputs
+from hollowbody.solver.outputs import RunOutputs, prepare_out_dir
 from hollowbody.solver.progress import COMPILE_NOTICE, LINE_INTERVAL, CompileWatch, Progress
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import State, init_state, restore, snapshot
@@ -114,44 +114,6 @@ class _Stop:
     def __exit__(self, *exc: object) -> None:
         for sig, old in self._old.items():
             signal.signal(sig, old)
-
-
-#: Files a run writes into its output folder (what ``overwrite`` deletes).
-RUN_OUTPUTS = ("*.csv", "states*.vtu", "states*.pvd", "messages.log", "summary.json",
-               "d3dump*", "force_displacement.*")
-#: Files that show a folder holds an earlier run.
-EARLIER_RUN = ("summary.json", "messages.log", "glstat.csv", "states.pvd", "d3dump*")
-
-
-def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -> None:
-    """Check (and with ``overwrite`` clear) the output folder before a run writes to it.
-
-    A folder holding an earlier run (:data:`EARLIER_RUN`) is refused with a
-    UserInputError unless ``overwrite``, which deletes the earlier run's files
-    (:data:`RUN_OUTPUTS`) first. An input file (``inputs``) is never deleted: one
-    whose name is that of a run output is refused.
-    """
-    from hollowbody.errors import UserInputError
-
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise UserInputError(f"{out} is a file, not an output folder")
-    if not out.is_dir():
-        return
-    keep = {Path(p).resolve() for p in inputs}
-    outputs = sorted({f for pat in RUN_OUTPUTS for f in out.glob(pat) if f.is_file()})
-    clash = [f.name for f in outputs if f.resolve() in keep]
-    if clash:
-        raise UserInputError(f"{out}: the input file {clash[0]} has the name of a run output; "
-                             "choose another output folder")
-    earlier = sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
-    if earlier and not overwrite:
-        raise UserInputError(f"{out} holds the outputs of an earlier run ({', '.join(earlier)}):"
-                             " use --overwrite to replace them, --restart to resume that run, "
-                             "or another output folder")
-    if earlier:
-        for f in outputs:
-            f.unlink()
 
 
 def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model

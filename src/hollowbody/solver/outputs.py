@@ -12,7 +12,8 @@
 Histories are written at the deck's *DATABASE_<name> intervals, or at
 ``end_time / 500`` when the deck requests none; states at the
 *DATABASE_BINARY_D3PLOT interval, or ``end_time / 20``. Every file is flushed
-as it goes.
+as it goes. :func:`prepare_out_dir` checks (and with ``overwrite`` clears) the
+folder before a run writes into it.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hollowbody.errors import UserInputError
 from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
 from hollowbody.solver.energies import energies, node_velocity_full_step
@@ -45,6 +47,42 @@ class _Clock:
             return False
         self.next = (np.floor(t / self.interval + 1e-9) + 1.0) * self.interval
         return True
+
+
+#: Files a run writes into its output folder (what ``overwrite`` deletes).
+RUN_OUTPUTS = ("*.csv", "states*.vtu", "states*.pvd", "messages.log", "summary.json",
+               "d3dump*", "force_displacement.*")
+#: Files that show a folder holds an earlier run.
+EARLIER_RUN = ("summary.json", "messages.log", "glstat.csv", "states.pvd", "d3dump*")
+
+
+def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -> None:
+    """Check (and with ``overwrite`` clear) the output folder before a run writes to it.
+
+    A folder holding an earlier run (:data:`EARLIER_RUN`) is refused with a
+    UserInputError unless ``overwrite``, which deletes the earlier run's files
+    (:data:`RUN_OUTPUTS`) first. An input file (``inputs``) is never deleted: one
+    whose name is that of a run output is refused.
+    """
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise UserInputError(f"{out} is a file, not an output folder")
+    if not out.is_dir():
+        return
+    keep = {Path(p).resolve() for p in inputs}
+    outputs = sorted({f for pat in RUN_OUTPUTS for f in out.glob(pat) if f.is_file()})
+    clash = [f.name for f in outputs if f.resolve() in keep]
+    if clash:
+        raise UserInputError(f"{out}: the input file {clash[0]} has the name of a run output; "
+                             "choose another output folder")
+    earlier = sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
+    if earlier and not overwrite:
+        raise UserInputError(f"{out} holds the outputs of an earlier run ({', '.join(earlier)}):"
+                             " use --overwrite to replace them, --restart to resume that run, "
+                             "or another output folder")
+    if earlier:
+        for f in outputs:
+            f.unlink()
 
 
 HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")
