@@ -15,9 +15,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-ENERGY_RATIO_BAND = (0.9, 1.1)
-HOURGLASS_FRACTION = 0.10
-DT_DROP_FACTOR = 0.01
+from hollowbody.solver.verdict import Thresholds
+
+# the warning limits of the run's verdict (one home for the numbers)
+_LIMITS = Thresholds()
+ENERGY_RATIO_BAND = (1.0 - _LIMITS.energy_ratio_warn, 1.0 + _LIMITS.energy_ratio_warn)
+HOURGLASS_FRACTION = _LIMITS.hourglass_warn
+DT_DROP_FACTOR = _LIMITS.dt_drop_warn
 
 
 @dataclass
