@@ -140,6 +140,9 @@ def print_summary(s: dict) -> None:
         if s.get(what):
             con.print(f"{what}: " + "; ".join(f"{kw} {', '.join(map(str, ids))}"
                                               for kw, ids in s[what].items()), markup=False)
+    if s.get("keywords"):
+        con.print("keywords read: " + ", ".join(f"*{kw} {n}" for kw, n in
+                                                s["keywords"].items()), markup=False)
     if s["mass_kg"] is not None:
         con.print(f"total mass {s['mass_kg']:.6g} kg (element masses "
                   f"{s['element_mass_kg']:.6g} kg)")
@@ -148,9 +151,6 @@ def print_summary(s: dict) -> None:
         lo, hi = bb["min"], bb["max"]
         con.print("bounding box (mm): " + ", ".join(
             f"{a} {lo[k]:.6g} .. {hi[k]:.6g}" for k, a in enumerate("xyz")))
-    if s.get("keywords"):
-        con.print("keywords read: " + ", ".join(f"*{kw} {n}" for kw, n in
-                                                s["keywords"].items()), markup=False)
     ts = s["time_step"] or {"solid": None, "shell": None, "run_dt": None}
     if s["time_step"] is not None:
         con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; "
