@@ -11,7 +11,8 @@ with ``strict=True`` the first one raises :class:`DeckError`.
 
 Only the syntax of each keyword is checked here (numbers, cards, increasing
 curve abscissae, include files); references between keywords are checked by
-:func:`hollowbody.build.build_model`.
+:func:`hollowbody.build.build_model`. :func:`read_deck_partial` stops at the
+first error instead of raising it and returns what was read before it.
 """
 
 from __future__ import annotations
