@@ -1,11 +1,11 @@
 """What a deck holds, counted from the keyword items without building a Model.
 
 ``hollowbody check`` prints this inventory when the deck cannot be built (a
-reference to an undefined id, a duplicate, ...): the counts still tell what
-was read. The keys are those of :func:`hollowbody.model.summary.summarize`
-for the same things (nodes, elements by kind, parts, materials and sections by
-keyword, unsupported keywords); masses, extent and time steps need a Model and
-are None.
+reference to an undefined id, a duplicate, ...) or read (of the items read
+before the error): the counts still tell what was read. The keys are those
+of :func:`hollowbody.model.summary.summarize` for the same things (nodes,
+elements by kind, parts, materials and sections by keyword, unsupported
+keywords); masses, extent and time steps need a Model and are None.
 """
 
 from __future__ import annotations
@@ -26,8 +26,12 @@ from hollowbody.io.keyword import (
 from hollowbody.model.summary import by_keyword, solid_kinds, unsupported_entries
 
 
-def deck_inventory(deck: Deck) -> dict:
-    """JSON-ready counts of ``deck``'s items (see the module docstring)."""
+def deck_inventory(deck: Deck, missing: str = "not defined") -> dict:
+    """JSON-ready counts of ``deck``'s items (see the module docstring).
+
+    ``missing``: what a part's section or material that is not in ``deck`` is
+    called (``"not read"`` for the items read before an error).
+    """
     elements = {"hexahedra": 0, "wedges": 0, "tetrahedra": 0, "other_solids": 0, "shells": 0,
                 "triangles": 0, "mass_elements": 0}
     count: dict[int, int] = {}
@@ -51,9 +55,9 @@ def deck_inventory(deck: Deck) -> dict:
     sections = [*deck.of_type(SectionSolid), *deck.of_type(SectionShell)]
     sec_kw = {s.secid: f"*{s.KEYWORD} {s.secid} (ELFORM {s.elform})" for s in sections}
     parts = [{"pid": p.pid, "title": p.title, "elements": count.get(p.pid, 0),
-              "section": sec_kw.get(p.secid, f"{p.secid} (not defined)"),
+              "section": sec_kw.get(p.secid, f"{p.secid} ({missing})"),
               "material": f"{mat_kw[p.mid]} {p.mid}" if p.mid in mat_kw
-              else f"{p.mid} (not defined)", "mass_kg": None}
+              else f"{p.mid} ({missing})", "mass_kg": None}
              for p in deck.of_type(Part)]
     return {
         "title": deck.title,

@@ -7,6 +7,10 @@ lateral-medial, 1.5 m/s; bone ends simply supported). Writes
 ``DIR/<structure>/deck.k`` with the run's outputs, ``DIR/bending.csv`` and
 ``DIR/bending.png`` (force- and moment-deflection side by side, wall times in
 the legend). Units: mm, ms, kN.
+
+A DIR holding an earlier run (bending.csv, bending.png or a structure folder
+with a run's outputs) is refused unless --overwrite, which deletes those files
+and the runs' outputs and decks first (other files are kept).
 """
 
 from __future__ import annotations
@@ -16,6 +20,9 @@ from pathlib import Path
 
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
+
+#: The command's own files in DIR (with the structure folders: what --overwrite clears).
+BENDING_FILES = ("bending.csv", "bending.png")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -41,6 +48,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="write ParaView states (default: no)")
     p.add_argument("--out", type=Path, default=None,
                    help="output folder (default: bending_<segment>)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the outputs of an earlier run in --out (default: such a "
+                        "folder is refused)")
     p.set_defaults(func=main)
 
 
@@ -48,6 +58,7 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.cli.run import exit_code
     from hollowbody.hollow.convert import HollowOptions
     from hollowbody.scenarios.limb import run_three_point_bending
+    from hollowbody.solver.outputs import prepare_runs_dir
 
     structures = tuple(s.strip() for s in args.structures.split(",") if s.strip())
     if not structures or set(structures) - {"solid", "hollow"}:
@@ -58,6 +69,7 @@ def main(args: argparse.Namespace) -> int:
     if args.end_time <= 0.0:
         raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
     out = args.out or Path(f"bending_{args.segment}")
+    prepare_runs_dir(out, args.overwrite, BENDING_FILES, ("solid", "hollow"), ("deck.k",))
     runs = run_three_point_bending(out, args.segment, end_time=args.end_time,
                                    structures=structures,
                                    hollow_options=HollowOptions(self_contact=args.self_contact),

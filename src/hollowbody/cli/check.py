@@ -3,12 +3,15 @@
 Prints a model summary (counts, parts, masses, extent, critical time steps,
 unsupported keywords) without running the deck: the run's set-up and its forces
 at t = 0 are computed, so the time step shown is the one the run takes first.
-The inventory (nodes, elements by kind, parts, materials and sections by
-keyword, unsupported keywords) is printed whenever the deck could be read, also
-when it cannot run: a deck whose references do not resolve is counted from its
-keyword items (``can_run`` false, the error as the reason). Exit code 0 when
-the deck can run, 2 when it cannot (reasons listed) or is malformed (one error
-line).
+The inventory (keyword blocks per keyword, nodes, elements by kind, parts,
+materials and sections by keyword, unsupported keywords) is always printed, also
+when the deck cannot run: a deck whose references do not resolve is counted from
+its keyword items, a malformed deck (a card that does not read, a missing include
+file) from what was read before the error (``can_run`` false, the error with its
+file and line as the reason). The summary also gives the numba threads a run
+would use (``--threads N|auto``, the same policy as ``run``,
+:mod:`hollowbody.solver.threads`). Exit code 0 when the deck can run, 2 when it
+cannot (reasons listed) or is malformed (one error line).
 """
 
 from __future__ import annotations
@@ -19,7 +22,8 @@ import sys
 import warnings
 
 from hollowbody.build import build_model
-from hollowbody.io.keyword import UnsupportedKeywordWarning, read_deck
+from hollowbody.cli.run import add_threads_argument, with_threads
+from hollowbody.io.keyword import UnsupportedKeywordWarning, read_deck_partial
 from hollowbody.model.summary import summarize
 
 
@@ -28,14 +32,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "check", help="read and validate a keyword deck and print a model summary",
         description="Read and validate an LS-DYNA keyword deck without running it and print "
         "a model summary (counts, parts, masses, extent, critical time steps, unsupported "
-        "keywords). Exit code 0: the deck can run; 2: it cannot or it is malformed.")
+        "keywords, the numba threads a run would use). Exit code 0: the deck can run; 2: it "
+        "cannot or it is malformed.")
     p.add_argument("deck", help="LS-DYNA keyword file (.k / .key / .dyn)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (default: a readable summary)")
     p.add_argument("--strict", action="store_true",
                    help="an unsupported keyword is an error (default: a warning, listed in "
                         "the summary)")
-    p.set_defaults(func=run)
+    add_threads_argument(p)
+    p.set_defaults(func=with_threads(run))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -44,27 +50,23 @@ def run(args: argparse.Namespace) -> int:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UnsupportedKeywordWarning)  # listed in the summary
-        deck = read_deck(args.deck, strict=args.strict)
-        try:
-            model = build_model(deck)
-        except DeckError as exc:
-            model, error = None, exc
+        read = read_deck_partial(args.deck, strict=args.strict)
+        model, error = None, read.error
+        if error is None:
+            try:
+                model = build_model(read.deck)
+            except DeckError as exc:
+                error = exc
     if model is None:  # the inventory of what was read, then the error
-        summary = deck_inventory(deck)
-        summary.update(deck=args.deck, problems=[str(error)], can_run=False, warnings=[],
-                       time_step=None)
-        if args.json:
-            print(json.dumps(summary))
-        else:
-            print_summary(summary)
+        summary = deck_inventory(read.deck, "not read" if read.error else "not defined")
+        summary.update(deck=args.deck, keywords=read.keywords, problems=[str(error)],
+                       can_run=False, warnings=[], time_step=None, threads=None)
+        _print(summary, args.json)
         raise error
     summary = summarize(model)
-    summary["deck"] = args.deck
+    summary.update(deck=args.deck, keywords=read.keywords)
     _first_step(model, summary)
-    if args.json:
-        print(json.dumps(summary))
-    else:
-        print_summary(summary)
+    _print(summary, args.json)
     if summary["problems"]:
         print(f"hollowbody check: {args.deck} cannot run: " + "; ".join(summary["problems"]),
               file=sys.stderr)
@@ -72,19 +74,29 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _print(summary: dict, as_json: bool) -> None:
+    if as_json:
+        print(json.dumps(summary))
+    else:
+        print_summary(summary)
+
+
 def _first_step(model, summary: dict) -> None:  # noqa: ANN001 - Model
-    """The run's own first step and set-up checks (``summary["time_step"]``, problems)."""
+    """The run's own first step, threads and set-up checks (``summary["time_step"]``,
+    ``summary["threads"]``, problems)."""
     from hollowbody.errors import DeckError
     from hollowbody.solver.preflight import Termination, first_time_step
 
     summary["time_step"] = {"solid": None, "shell": None, "tssfac": model.controls.tssfac,
                             "run_dt": None}
+    summary["threads"] = None
     if summary["problems"]:
         return  # the set-up would fail on those first
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             summary["time_step"] = first_time_step(model)
+            summary["threads"] = summary["time_step"].pop("threads")
         except (DeckError, Termination) as exc:
             summary["problems"].append(str(exc))
             summary["can_run"] = False
@@ -128,6 +140,9 @@ def print_summary(s: dict) -> None:
         if s.get(what):
             con.print(f"{what}: " + "; ".join(f"{kw} {', '.join(map(str, ids))}"
                                               for kw, ids in s[what].items()), markup=False)
+    if s.get("keywords"):
+        con.print("keywords read: " + ", ".join(f"*{kw} {n}" for kw, n in
+                                                s["keywords"].items()), markup=False)
     if s["mass_kg"] is not None:
         con.print(f"total mass {s['mass_kg']:.6g} kg (element masses "
                   f"{s['element_mass_kg']:.6g} kg)")
@@ -144,15 +159,19 @@ def print_summary(s: dict) -> None:
         con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "
                   f"{int(s['end_time'] / ts['run_dt']) if ts['run_dt'] else 0} cycles")
+    if s.get("threads"):
+        con.print(f"numba threads: {s['threads']['count']} ({s['threads']['reason']})",
+                  markup=False)
     if s["unsupported"]:
         con.print(f"unsupported keywords ({len(s['unsupported'])}, ignored):")
         for u in s["unsupported"]:
-            con.print(f"  {u['file']}:{u['line']}: *{u['keyword']}", markup=False)
+            con.print(f"  {u['file']}:{u['line']}: *{u['keyword']}", markup=False,
+                      soft_wrap=True)
     for w in s.get("warnings", []):
         con.print(f"[yellow]warning:[/yellow] {escape(w)}")
     if s["problems"]:
         con.print("[bold red]cannot run:[/bold red]")
         for reason in s["problems"]:
-            con.print(f"  - {reason}", markup=False)
+            con.print(f"  - {reason}", markup=False, soft_wrap=True)  # one line: file:line
     else:
         con.print("[green]the deck can run[/green]")

@@ -12,6 +12,11 @@ fd_all.png (every curve), study.json and the run folders
 Runs are serial by default so wall times are comparable; --workers N runs N
 at a time (each single-threaded).
 
+A DIR holding an earlier study (study.json, study.md, study.csv, fd_*.png or
+run folders with a run's outputs) is refused unless --overwrite, which deletes
+those files and the run folders' outputs and decks first (never the
+--hollow-from file or other files).
+
 Exit codes: 0 the study ran (whatever the runs' status: dying is a result
 here), 2 bad input, 130 interrupted.
 """
@@ -24,6 +29,11 @@ from pathlib import Path
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
+
+#: The study's own files in DIR and its run folders (what --overwrite clears).
+STUDY_FILES = ("study.json", "study.md", "study.csv", "fd_*.png")
+RUN_DIRS = ("solid/*", "hollow/*")
+RUN_FILES = ("deck.k", "console.log")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -50,6 +60,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of an existing dask scheduler (default: local processes)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the outputs of an earlier study in --out (default: such a "
+                        "folder is refused)")
     add_threads_argument(p)
     p.set_defaults(func=with_threads(main))
 
@@ -60,6 +73,7 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.calibrate.space import parse_speeds
     from hollowbody.calibrate.study import hollow_from_calibration, run_study
     from hollowbody.report.study import wall_time_ratios, write_study_report
+    from hollowbody.solver.outputs import prepare_runs_dir
 
     speeds = parse_speeds(args.speeds)
     if args.workers is not None and args.workers < 1:
@@ -74,6 +88,8 @@ def main(args: argparse.Namespace) -> int:
         sim.config("hollow", speeds[0], wall)
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    prepare_runs_dir(args.out, args.overwrite, STUDY_FILES, RUN_DIRS, RUN_FILES,
+                     inputs=(args.hollow_from,) if args.hollow_from else ())
     with make_runner(args.workers, args.scheduler) as runner:
         rows = run_study(sim, speeds, args.out, hollow_params=wall, runner=runner)
     files = write_study_report(rows, args.out)

@@ -13,7 +13,8 @@ Histories are written at the deck's *DATABASE_<name> intervals, or at
 ``end_time / 500`` when the deck requests none; states at the
 *DATABASE_BINARY_D3PLOT interval, or ``end_time / 20``. Every file is flushed
 as it goes. :func:`prepare_out_dir` checks (and with ``overwrite`` clears) the
-folder before a run writes into it.
+folder before a run writes into it, :func:`prepare_runs_dir` the folder of a
+command that makes several runs.
 """
 
 from __future__ import annotations
@@ -56,6 +57,11 @@ RUN_OUTPUTS = ("*.csv", "states*.vtu", "states*.pvd", "messages.log", "summary.j
 EARLIER_RUN = ("summary.json", "messages.log", "glstat.csv", "states.pvd", "d3dump*")
 
 
+def _earlier_run(out: Path) -> list[str]:
+    """Names of the files that show ``out`` holds an earlier run (:data:`EARLIER_RUN`)."""
+    return sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
+
+
 def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -> None:
     """Check (and with ``overwrite`` clear) the output folder before a run writes to it.
 
@@ -75,7 +81,7 @@ def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -
     if clash:
         raise UserInputError(f"{out}: the input file {clash[0]} has the name of a run output; "
                              "choose another output folder")
-    earlier = sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
+    earlier = _earlier_run(out)
     if earlier and not overwrite:
         raise UserInputError(f"{out} holds the outputs of an earlier run ({', '.join(earlier)}):"
                              " use --overwrite to replace them, --restart to resume that run, "
@@ -83,6 +89,47 @@ def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -
     if earlier:
         for f in outputs:
             f.unlink()
+
+
+def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
+                     run_dirs: tuple[str, ...], run_files: tuple[str, ...] = (),
+                     inputs: tuple[Path, ...] = ()) -> None:
+    """Check (and with ``overwrite`` clear) the folder of a command that makes several
+    runs (``hollowbody study``, ``hollowbody bending``) before it writes to it.
+
+    files: glob patterns of the command's own files in ``out`` (tables, plots);
+    run_dirs: glob patterns of its run folders under ``out``; run_files: glob
+    patterns of the files the command writes into a run folder besides the
+    run's outputs (its deck). The folder holds an earlier run when one of
+    ``files`` exists or a run folder holds an earlier run (:data:`EARLIER_RUN`);
+    it is refused with a UserInputError unless ``overwrite``, which deletes
+    those files, the run folders' outputs (:data:`RUN_OUTPUTS`) and their
+    ``run_files`` first. Other files are kept; an input file (``inputs``) is
+    never deleted: one that would be is refused.
+    """
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise UserInputError(f"{out} is a file, not an output folder")
+    if not out.is_dir():
+        return
+    keep = {Path(p).resolve() for p in inputs}
+    own = sorted({f for pat in files for f in out.glob(pat) if f.is_file()})
+    runs = sorted({d for pat in run_dirs for d in out.glob(pat)
+                   if d.is_dir() and _earlier_run(d)})
+    extra = sorted({f for d in runs for pat in run_files for f in d.glob(pat) if f.is_file()})
+    for f in own + extra:
+        if f.resolve() in keep:
+            raise UserInputError(f"{out}: the input file {f.name} has the name of an output; "
+                                 "choose another output folder")
+    earlier = [f.name for f in own] + [f"{d.relative_to(out)}/" for d in runs]
+    if earlier and not overwrite:
+        shown = ", ".join(earlier[:6]) + (", ..." if len(earlier) > 6 else "")
+        raise UserInputError(f"{out} holds the outputs of an earlier run ({shown}): use "
+                             "--overwrite to replace them, or another output folder")
+    for d in runs:
+        prepare_out_dir(d, True, inputs)
+    for f in own + extra:
+        f.unlink()
 
 
 HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from hollowbody.errors import UserInputError
+from hollowbody.solver import threads as th
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import init_state
 from hollowbody.solver.step import Termination, start
@@ -29,23 +31,33 @@ def _smallest(plan, rotational: bool) -> dict | None:  # noqa: ANN001 - Assembly
     return best
 
 
-def first_time_step(model) -> dict:  # noqa: ANN001 - Model
-    """The run's time steps at t = 0 (ms).
+def first_time_step(model, threads: int | str | None = None) -> dict:  # noqa: ANN001 - Model
+    """The run's time steps at t = 0 (ms) and its numba threads.
 
     Returns {"solid": {dt, element, part} or None, "shell": ... (the smallest
     critical step of each element family, before TSSFAC, with its step
     factor), "tssfac", "run_dt" (the first step the run takes), "element",
-    "part" (what sets it), "mass_scaling_target"}. Raises DeckError for what
-    the run's set-up rejects and :class:`~hollowbody.solver.step.Termination`
-    when nothing sets a step.
+    "part" (what sets it), "mass_scaling_target", "threads": {"count",
+    "reason"}}: the threads the run would use with the ``threads`` setting
+    (None: the process default, as the run does; see
+    :mod:`hollowbody.solver.threads`), which also compute the forces at t = 0.
+    Raises DeckError for what the run's set-up rejects and
+    :class:`~hollowbody.solver.step.Termination` when nothing sets a step.
     """
     plan = assemble(model)
+    try:
+        n_threads, why = th.resolve(threads if threads is not None else th.default(),
+                                    th.model_work(plan))
+    except ValueError as exc:
+        raise UserInputError(str(exc)) from None
     state = init_state(model, plan)
-    start(model, plan, state)
+    with th.using(n_threads):
+        start(model, plan, state)
     elem, pid = state.dt_crit_elem
     return {"solid": _smallest(plan, False), "shell": _smallest(plan, True),
             "tssfac": plan.tssfac, "run_dt": float(state.dt_next), "element": int(elem),
-            "part": int(pid), "mass_scaling_target": state.mass_scaling.target}
+            "part": int(pid), "mass_scaling_target": state.mass_scaling.target,
+            "threads": {"count": n_threads, "reason": why}}
 
 
 __all__ = ["Termination", "first_time_step"]

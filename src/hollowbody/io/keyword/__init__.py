@@ -58,7 +58,13 @@ from hollowbody.io.keyword.kw_sets import (
     SetPartListGenerate,
     SetSegment,
 )
-from hollowbody.io.keyword.reader import UnsupportedKeywordWarning, read_deck, read_deck_text
+from hollowbody.io.keyword.reader import (
+    PartialRead,
+    UnsupportedKeywordWarning,
+    read_deck,
+    read_deck_partial,
+    read_deck_text,
+)
 from hollowbody.io.keyword.writer import deck_lines, write_deck
 
 __all__ = [
@@ -69,11 +75,12 @@ __all__ = [
     "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
     "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
     "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
-    "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartInertia",
+    "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartialRead", "PartInertia",
     "PrescribedMotionKeyword", "PrescribedMotionNode",
     "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionShell",
     "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
     "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "TIED_OFFSETS",
     "TIED_TYPES", "TiedContact", "Title",
-    "UnsupportedKeywordWarning", "deck_lines", "read_deck", "read_deck_text", "write_deck",
+    "UnsupportedKeywordWarning", "deck_lines", "read_deck", "read_deck_partial",
+    "read_deck_text", "write_deck",
 ]

@@ -11,7 +11,8 @@ with ``strict=True`` the first one raises :class:`DeckError`.
 
 Only the syntax of each keyword is checked here (numbers, cards, increasing
 curve abscissae, include files); references between keywords are checked by
-:func:`hollowbody.build.build_model`.
+:func:`hollowbody.build.build_model`. :func:`read_deck_partial` stops at the
+first error instead of raising it and returns what was read before it.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from __future__ import annotations
 import os
 import warnings
 from pathlib import Path
+from typing import NamedTuple
 
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword.base import Block, RawKeyword, resolve
@@ -40,6 +42,29 @@ def read_deck(path: str | os.PathLike[str], strict: bool = False) -> Deck:
     Raises :class:`~hollowbody.errors.DeckError` for malformed input.
     """
     return _Reader(strict).read_file(str(path), str(path), None)
+
+
+class PartialRead(NamedTuple):
+    """What :func:`read_deck_partial` read: ``deck`` (the items read before the
+    error, included files in place), ``keywords`` (keyword blocks found per
+    keyword name, through the includes, up to and including the one holding
+    the error) and ``error`` (None when the whole deck reads)."""
+
+    deck: Deck
+    keywords: dict[str, int]
+    error: DeckError | None
+
+
+def read_deck_partial(path: str | os.PathLike[str], strict: bool = False) -> PartialRead:
+    """Read as :func:`read_deck` does, but stop at the first error instead of raising
+    it; see :class:`PartialRead`. A keyword block that holds an error adds no items."""
+    deck = Deck(str(path))
+    reader = _Reader(strict)
+    try:
+        reader.read_file(str(path), str(path), None, deck)
+    except DeckError as exc:
+        return PartialRead(deck, reader.keywords, exc)
+    return PartialRead(deck, reader.keywords, None)
 
 
 def read_deck_text(text: str, name: str = "<text>", strict: bool = False) -> Deck:
@@ -83,10 +108,13 @@ class _Reader:
         self.warned: set[str] = set()
         self.stack: list[str] = []
         self.paths: list[tuple[str, str]] = []  # (display, real) include search folders
+        self.keywords: dict[str, int] = {}  # keyword blocks found per name
 
     # -- files -------------------------------------------------------------
 
-    def read_file(self, display: str, real: str, origin: tuple[str, int] | None) -> Deck:
+    def read_file(self, display: str, real: str, origin: tuple[str, int] | None,
+                  deck: Deck | None = None) -> Deck:
+        """The file's items, added to ``deck`` (default: a new Deck) as they are read."""
         try:
             data = Path(real).read_bytes()
         except OSError as exc:
@@ -95,25 +123,24 @@ class _Reader:
             reason = "does not exist" if not os.path.exists(real) else exc.strerror
             raise DeckError(f"{what} '{display}' {reason}", file, line,
                             "INCLUDE" if origin else None) from None
-        return self.read_bytes(data, display, real)
+        return self.read_bytes(data, display, real, deck)
 
-    def read_bytes(self, data: bytes, display: str, real: str) -> Deck:
+    def read_bytes(self, data: bytes, display: str, real: str, deck: Deck | None = None) -> Deck:
         key = os.path.realpath(real)
         if key in self.stack:
             raise DeckError(f"include cycle: '{display}' includes itself", display, 1)
         self.stack.append(key)
         try:
-            return self._parse(data, display, real)
+            return self._parse(data, display, real, Deck(display) if deck is None else deck)
         finally:
             self.stack.pop()
 
-    def _parse(self, data: bytes, display: str, real: str) -> Deck:
+    def _parse(self, data: bytes, display: str, real: str, deck: Deck) -> Deck:
         if data.startswith(b"\xef\xbb\xbf"):
             data = data[3:]
         if is_binary(data):
             raise DeckError("not a keyword deck: the file is binary (a keyword deck is text)",
                             display)
-        deck = Deck(display)
         starts = []
         if data.startswith(b"*"):
             pos = 0
@@ -138,6 +165,7 @@ class _Reader:
             name, args, flag = _split_keyword_line(data[start:eol])
             if name == "END":
                 break
+            self.keywords[name] = self.keywords.get(name, 0) + 1
             fmt = {"+": "long", "%": "i10", "-": "standard"}.get(flag or "", self.fmt)
             block = Block(name, name, (), fmt, display, line, data, min(eol + 1, end), end,
                           line + 1)
@@ -200,8 +228,9 @@ class _Reader:
                 continue
             name, pending = pending + name, ""
             display_path, real_path = self._locate(name, block.file, real)
-            child = self.read_file(display_path, real_path, (block.file, line))
-            deck.add(Include(filename=name, deck=child, source=Source(block.file, line)))
+            child = deck.add(Include(filename=name, deck=Deck(display_path),
+                                     source=Source(block.file, line))).deck
+            self.read_file(display_path, real_path, (block.file, line), child)
 
     def _locate(self, name: str, display: str, real: str) -> tuple[str, str]:
         if os.path.isabs(name):
