@@ -204,7 +204,7 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
 @njit(cache=True, parallel=True)
 def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, mloc, wsum, imm,
                ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn):
-    """Pair forces of the nodes act of one pass, after detection (:mod:`~hollowbody.contact.detect`).
+    """Pair forces of the nodes act of one pass, after :mod:`~hollowbody.contact.detect`.
 
     act (m,) int32 rows (:func:`active_rows`); v (L, 3) float64 mm/ms (local
     rows, t^{n+1/2}); dt, dtc: ms (step, SOFT=1 reference step; dtc <= 0
