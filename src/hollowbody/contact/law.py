@@ -24,6 +24,11 @@ from hollowbody.contact.geometry import project_corners
 #: Default start of the stiffened zone, as a fraction of the penetration at
 #: release (params[8]; a value >= 1 disables it).
 STIFFEN_FRACTION = 0.5
+#: (omega dt)^2 allowed for all contact springs on a node, the bound every spring
+#: stiffness is capped to (:func:`stable_stiffness`): by Weyl's inequality the
+#: eigenvalues of element and contact stiffness add at most, and elements use up
+#: to (2 TSSFAC)^2 = 3.24 of the central-difference limit 4 at TSSFAC 0.9.
+CAP_LIMIT = 0.75
 #: (omega dt)^2 allowed for all contact springs on a node in the stiffened zone
 #: (params[9]); with the elements' (omega dt)^2 <= (2 TSSFAC)^2 = 3.24 the sum
 #: stays below the central-difference limit 4.
@@ -103,15 +108,14 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     ``held`` but not same (the node moved on to another segment, whose gap may
     differ from the last one's by a fold's angle): ``F = f_prev - k dn`` with
     dn = v_n dt (mm) the normal relative motion of this step (negative when
-    approaching). A fresh contact: ``F = k max(0, -dn)``, the penetration this
-    step can have made (a node found deeper, e.g. sliding over a fold or
-    penetrating at t = 0, is held where it is, as LS-DYNA's IGNORE=1 does).
-    Always ``0 <= F <= k gap``.
+    approaching). Both bounded, ``0 <= F <= k gap``. A fresh contact:
+    ``F = k gap`` (an initial penetration between surfaces not joined by the
+    mesh is pushed apart).
 
-    Why: with the total form ``k gap`` every jump of the gap at fixed position
-    (a fresh contact found deep, a change of segment, a rise of k) is a jump of
-    the force, and the node is pushed out with more energy than it came in with;
-    in folding shell walls this made the contact energy negative (hollow block,
+    Why: with the total form ``k gap`` every jump of the gap at a fixed position
+    (a change of segment across a fold, a rise of k) is a jump of the force,
+    and the node is pushed out with more energy than it came in with; in
+    folding shell walls this made the contact energy negative (hollow block,
     40 km/h: -23 J of 309 J). Incremental, k may change from cycle to cycle
     (the stability cap follows the springs on each node) without a force jump;
     a drop of k lowers the bound ``k gap`` (dissipative, never generative).
@@ -121,13 +125,53 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     elif held:
         f = f_prev - k * dn
     else:
-        f = -k * dn if dn < 0.0 else 0.0
+        return k * gap
     top = k * gap
     if f > top:
         return top
     if f < 0.0:
         return 0.0
     return f
+
+
+@njit(cache=True, inline="always")
+def stable_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wsum, limit, dt):
+    """Largest spring stiffness (kN/mm) of the pair node nd - segment (a, b, c, d)
+    (shape functions w at the contact point) that keeps every movable node j of
+    the pair within ``(omega dt)^2 = limit`` with all its contact springs of this
+    cycle together (0: no bound, every participant immovable).
+
+    Row-sum (Gershgorin) bound of the pair stiffness ``k u u^T`` over the movable
+    participants, u = (1, -w): row j is ``k |u_j| S`` with S the sum of |u| over
+    them (2 for a node on a deformable segment, 1 against a rigid or fixed one);
+    with W_j the summed weights of this cycle's springs on j,
+    ``k W_j S / m_j <= limit / dt^2``. mloc (L,) kg (inf: rigid or fixed),
+    wsum (L,) -, dt ms.
+    """
+    s = 0.0
+    if mloc[nd] < 1.0e300:
+        s += 1.0
+    if w0 > 0.0 and mloc[a] < 1.0e300:
+        s += w0
+    if w1 > 0.0 and mloc[b] < 1.0e300:
+        s += w1
+    if w2 > 0.0 and mloc[c] < 1.0e300:
+        s += w2
+    if w3 > 0.0 and d != c and mloc[d] < 1.0e300:
+        s += w3
+    m = mloc[nd] / max(wsum[nd], 1.0)
+    if w0 > 0.0:
+        m = min(m, mloc[a] / max(wsum[a], w0))
+    if w1 > 0.0:
+        m = min(m, mloc[b] / max(wsum[b], w1))
+    if w2 > 0.0:
+        m = min(m, mloc[c] / max(wsum[c], w2))
+    if w3 > 0.0 and d != c:
+        m = min(m, mloc[d] / max(wsum[d], w3))
+    dt2 = dt * dt
+    if m >= 1.0e300 or not dt2 > 0.0 or s <= 0.0:
+        return 0.0
+    return limit * m / (s * dt2)
 
 
 @njit(cache=True, inline="always")

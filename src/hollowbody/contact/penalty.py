@@ -51,11 +51,13 @@ from numba import njit, prange
 
 from hollowbody.contact.detect import CHUNK
 from hollowbody.contact.law import (
+    CAP_LIMIT,
     DT_FLOOR,
     STIFFEN_FRACTION,
     deep_stiffness,
     penalty_force,
     spring_force,
+    stable_stiffness,
 )
 
 
@@ -122,11 +124,11 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
         # the largest stiffness every node of the pair stays stable with, all the
         # springs on it this cycle together (the step floored at DT_FLOOR of the
         # reference step: a collapsing element, which ends the run anyway, does not
-        # drive the force up); it caps the spring and is the stiffened zone's
-        kd = deep_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, deep,
-                            max(dt, DT_FLOOR * dtc))
-        if 0.0 < kd < k:
-            k = kd
+        # drive the force up)
+        dts = max(dt, DT_FLOOR * dtc)
+        kcap = stable_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, CAP_LIMIT, dts)
+        if 0.0 < kcap < k:
+            k = kcap
         # relative velocity node - contact point
         vrx = v[nd, 0] - (bw0 * v[a, 0] + bw1 * v[b, 0] + bw2 * v[c, 0] + bw3 * v[dd, 0])
         vry = v[nd, 1] - (bw0 * v[a, 1] + bw1 * v[b, 1] + bw2 * v[c, 1] + bw3 * v[dd, 1])
@@ -139,8 +141,9 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
             # nothing in the pair can be set in motion but a rigid body (a rigid
             # impactor on a fixed base): the stiffened zone holds the body
             g1 = STIFFEN_FRACTION * brel
-        if bgap <= g1:
-            kd = 0.0
+        kd = 0.0
+        if bgap > g1:
+            kd = deep_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, deep, dts)
         fn, fdn = penalty_force(bgap, gprev, ofd[i], k, kd, g1, 0.5 * (brel - g1))
         ofd[i] = fdn
         fb = spring_force(bgap, gprev, ofn[i], k, vn * dt, prev == s, prev >= 0)
