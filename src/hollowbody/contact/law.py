@@ -28,7 +28,7 @@ STIFFEN_FRACTION = 0.5
 #: stiffness is capped to (:func:`stable_stiffness`): by Weyl's inequality the
 #: eigenvalues of element and contact stiffness add at most, and elements use up
 #: to (2 TSSFAC)^2 = 3.24 of the central-difference limit 4 at TSSFAC 0.9.
-CAP_LIMIT = 0.75
+CAP_LIMIT = 1.5
 #: (omega dt)^2 allowed for all contact springs on a node in the stiffened zone
 #: (params[9]); with the elements' (omega dt)^2 <= (2 TSSFAC)^2 = 3.24 the sum
 #: stays below the central-difference limit 4.

@@ -51,7 +51,6 @@ from numba import njit, prange
 
 from hollowbody.contact.detect import CHUNK
 from hollowbody.contact.law import (
-    CAP_LIMIT,
     DT_FLOOR,
     STIFFEN_FRACTION,
     deep_stiffness,
@@ -75,6 +74,7 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
     fric = params[7] > 0.0
     stiffen = params[8]
     deep = params[9]
+    cap = params[10]
     for ii in range(i0, i1):
         i = act[ii]
         s = oseg[i]
@@ -126,7 +126,7 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
         # reference step: a collapsing element, which ends the run anyway, does not
         # drive the force up)
         dts = max(dt, DT_FLOOR * dtc)
-        kcap = stable_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, CAP_LIMIT, dts)
+        kcap = stable_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, cap, dts)
         if 0.0 < kcap < k:
             k = kcap
         # relative velocity node - contact point

@@ -35,6 +35,7 @@ allocated here, none per cycle (the bucket sort, every
 
 from __future__ import annotations
 
+import os
 from typing import ClassVar
 
 import numpy as np
@@ -50,7 +51,7 @@ from hollowbody.contact.exclusion import (
     ring_exclusions,
 )
 from hollowbody.contact.frames import segment_frames, segment_frames_of
-from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
+from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
     active_rows,
@@ -232,7 +233,8 @@ class ContactRuntime:
         self._params = np.array([model.controls.slsfac, 1.0 if cdef.soft >= 1 else 0.0,
                                  cdef.sofscl, cdef.fs, cdef.fd, cdef.dc, cdef.vdc,
                                  1.0 if (cdef.fs > 0.0 or cdef.fd > 0.0) else 0.0,
-                                 STIFFEN_FRACTION, STIFFEN_LIMIT])
+                                 STIFFEN_FRACTION, STIFFEN_LIMIT,
+                                 float(os.environ.get("HB_CAP", CAP_LIMIT))])
         self._node_ids = np.asarray(model.node_ids, dtype=np.int64)
         ms_cache: dict[float, Surface] = {}
 
