@@ -54,7 +54,8 @@ _BOUND_EPS = 1.0e-6
 
 @njit(cache=True)
 def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                  warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel):
+                  warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
+                  odel):
     """Detection for the rows act[i0:i1] of a pass (body of :func:`detect_pass`)."""
     for ii in range(i0, i1):
         i = act[ii]
@@ -93,9 +94,12 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             reach = 0.5 * (tn + s_thick[s])
             two = s_two[s] != 0
             rel = release_depth(s_depth[s], reach, two)
+            # the segment of last cycle holds the node deeper by the penetration it
+            # was found with and is not pushed back from (odel, see spring_force)
+            ext = odel[i] if s == prev else 0.0
             # largest |d| that can be accepted: a node not in contact last cycle (no
             # remembered normal) meets a two-sided segment only within its reach
-            lim = reach if (two and fresh) else max(reach, rel)
+            lim = reach if (two and fresh) else max(reach, rel + ext)
             rx = px - cen[s, 0]
             ry = py - cen[s, 1]
             rz = pz - cen[s, 2]
@@ -130,7 +134,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 if al > 0.5 or al < -0.5:
                     sg = 1.0 if al > 0.0 else -1.0
                     de = sg * d
-                    if de >= reach or de <= -rel:
+                    if de >= reach or de <= -(rel + ext):
                         continue
                     gap = reach - de
                 else:
@@ -142,7 +146,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 ny *= sg
                 nz *= sg
             else:
-                if d >= reach or d <= -rel:
+                if d >= reach or d <= -(rel + ext):
                     continue
                 gap = reach - d
             if ad < best_ad or (ad == best_ad and s < best):  # ties: lowest segment
@@ -163,7 +167,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
         othru[i] = -1
         if prev >= 0 and prev != best and oentry[i] != 0:
             othru[i] = pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, prev,
-                                       mx, my, mz)
+                                       mx, my, mz, odel[i])
         oseg[i] = best
         if best < 0:
             ogap[i] = 0.0
@@ -187,7 +191,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
 
 @njit(cache=True, parallel=True)
 def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
-                ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel):
+                ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
     """Find the contact segment of the nodes act of one pass.
 
     act (m,) int32: the rows of ``nodes`` to treat
@@ -204,20 +208,24 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     contact point, othru (ns,) int32 segment the node was pushed through or -1,
     and for the force pass gold (ns,) mm last cycle's gap (this one's for a
     fresh contact), sold (ns,) int32 last cycle's segment, orel (ns,) mm
-    penetration at release.
+    penetration at release. odel (ns,) mm (in): the part of last cycle's
+    penetration the spring force does not push back from
+    (:func:`~hollowbody.contact.law.spring_force`); the node is released from
+    that segment that much deeper.
     """
     ns = act.shape[0]
     nch = (ns + CHUNK - 1) // CHUNK
     for c in prange(nch):
         _detect_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, x, nodes, n_thick, seg,
                       s_thick, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, nprev, oseg,
-                      ow, ogap, oentry, othru, gold, sold, orel)
+                      ow, ogap, oentry, othru, gold, sold, orel, odel)
 
 
 @njit(cache=True)
 def detect_pass_serial(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                       warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel):
+                       warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
+                       odel):
     """Serial :func:`detect_pass` (small passes: no thread start-up)."""
     _detect_range(0, act.shape[0], act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen,
                   nrm, rad2, warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
-                  orel)
+                  orel, odel)

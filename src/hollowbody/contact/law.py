@@ -203,10 +203,11 @@ def deep_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wsum, limit, dt):
 
 
 @njit(cache=True)
-def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, mz):
+def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, mz, extra):
     """s if the node at p (thickness tn) is behind segment s, the one it was in
     contact with last cycle (with contact normal m, zero if unknown), by more
-    than the release depth, else -1."""
+    than the release depth (plus extra mm, the penetration held, see
+    :func:`spring_force`), else -1."""
     a = seg[s, 0]
     b = seg[s, 1]
     c = seg[s, 2]
@@ -228,6 +229,6 @@ def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, m
         if al < 0.0:
             d = -d
     reach = 0.5 * (tn + s_thick[s])
-    if d <= -release_depth(s_depth[s], reach, two):
+    if d <= -(release_depth(s_depth[s], reach, two) + extra):
         return s
     return -1

@@ -62,7 +62,7 @@ from hollowbody.contact.law import (
 
 @njit(cache=True)
 def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, mloc,
-                 wsum, imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn):
+                 wsum, imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn, odel):
     """Forces of the rows act[i0:i1] of a pass (body of :func:`force_pass`)."""
     slsfac = params[0]
     soft = params[1]
@@ -87,6 +87,7 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
             of[i, 2] = 0.0
             ofd[i] = 0.0
             ofn[i] = 0.0
+            odel[i] = 0.0
             continue
         nd = nodes[i]
         prev = sold[i]
@@ -149,6 +150,8 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
         fb = spring_force(bgap, gprev, ofn[i], k, vn * dt, prev == s, prev >= 0)
         fn += fb - k * bgap
         ofn[i] = fb
+        # penetration not pushed back from: the node is released that much deeper
+        odel[i] = min(bgap - fb / k, brel) if k > 0.0 else 0.0
         if vdc > 0.0 and mstar < 1.0e300:
             inv = 0.0
             if 0.0 < mn < 1.0e300:
@@ -206,7 +209,7 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
 
 @njit(cache=True, parallel=True)
 def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, mloc, wsum, imm,
-               ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn):
+               ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn, odel):
     """Pair forces of the nodes act of one pass, after :mod:`~hollowbody.contact.detect`.
 
     act (m,) int32 rows (:func:`active_rows`); v (L, 3) float64 mm/ms (local
@@ -226,22 +229,24 @@ def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, ml
     nprev (ns, 3) normal, oseg (ns,) int32 segment or -1, ow (ns, 4), ogap, gold,
     orel (ns,) mm, sold (ns,) int32. State (in/out): ft (ns, 3) kN friction, ofd
     (ns,) kN stiffening force, ofn (ns,) kN spring force. Out: of (ns, 3) kN
-    force on the node.
+    force on the node, odel (ns,) mm the penetration the spring does not push
+    back from (gap - F / k, at most the penetration at release), by which the
+    node's release from this segment is deferred (detection, next cycle).
     """
     ns = act.shape[0]
     nch = (ns + CHUNK - 1) // CHUNK
     for c in prange(nch):
         _force_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, v, dt, dtc, nodes, n_k, n_mass,
                      seg, s_k, s_mass, params, mloc, wsum, imm, ft, nprev, oseg, ow, ogap, gold,
-                     sold, orel, of, ofd, ofn)
+                     sold, orel, of, ofd, ofn, odel)
 
 
 @njit(cache=True)
 def force_pass_serial(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, mloc, wsum,
-                      imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn):
+                      imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn, odel):
     """Serial :func:`force_pass` (small passes: no thread start-up)."""
     _force_range(0, act.shape[0], act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params,
-                 mloc, wsum, imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn)
+                 mloc, wsum, imm, ft, nprev, oseg, ow, ogap, gold, sold, orel, of, ofd, ofn, odel)
 
 
 @njit(cache=True)

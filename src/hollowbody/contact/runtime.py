@@ -106,7 +106,8 @@ class _Pass:
     new length at every sort / filter: put back by assignment, not in place; fact
     and act are views of work buffers until the next filter), the filter's stamps,
     the per-node contact history (last segment, weights, force, gap, normal,
-    friction force, stiffening and spring force, entry flag, pass-through segment) and
+    friction force, stiffening and spring force, held penetration, entry flag,
+    pass-through segment) and
     which segments are alive (erosion). The segment frames and boxes are recomputed
     before they are read (every cycle / filter) and are not state, nor are the
     detection's hand-overs to the force pass (gold, sold, orel).
@@ -114,7 +115,7 @@ class _Pass:
 
     STATE_FIELDS: ClassVar[tuple[str, ...]] = (
         "ptr", "cand", "sact", "nptr", "ncand", "fact", "act", "_mark",
-        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "ofn", "oentry", "othru",
+        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "ofn", "odel", "oentry", "othru",
         "seg_alive")
 
     def __init__(self, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth,
@@ -164,6 +165,7 @@ class _Pass:
         self.ogap = np.zeros(ns)
         self.ofd = np.zeros(ns)
         self.ofn = np.zeros(ns)
+        self.odel = np.zeros(ns)
         # detection -> force pass of the same cycle: last gap, last segment, release gap
         self.gold = np.zeros(ns)
         self.sold = np.full(ns, -1, np.int32)
@@ -543,13 +545,13 @@ class ContactRuntime:
             (detect_pass if self._threaded(p) else detect_pass_serial)(
                 p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
                 p.cen, p.nrm, p.rad2, p.warp, p.nptr, p.ncand, p.nprev, p.oseg, p.ow, p.ogap,
-                p.oentry, p.othru, p.gold, p.sold, p.orel)
+                p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(
                 p.act, self._vl, dt, self._dtc, p.nodes, p.n_k, p.n_mass, p.seg, p.s_k,
                 p.s_mass, self._params, self._mloc, self._wsum, self._imm, p.ft, p.nprev,
-                p.oseg, p.ow, p.ogap, p.gold, p.sold, p.orel, p.of, p.ofd, p.ofn)
+                p.oseg, p.ow, p.ogap, p.gold, p.sold, p.orel, p.of, p.ofd, p.ofn, p.odel)
             if count_through(p.act, p.othru):
                 self._record_through(p)
             p.fsum[:] = 0.0
