@@ -217,10 +217,11 @@ def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, ml
     disables the mass-based stiffness). nodes (ns,) int32 rows of v; n_k (ns,)
     kN/mm node stiffness (SOFT=0, scale factor applied, 0 = unknown); n_mass
     (ns,) kg (inf for rigid-body nodes); seg (S, 4) int32; s_k, s_mass (S,) as
-    for nodes. params (10,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc,
+    for nodes. params (11,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc,
     vdc, friction on, start of the stiffened zone (fraction of the penetration
-    at release), the stability limit of all springs on a node
-    (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`). mloc (L,) kg nodal masses
+    at release), its stability limit of all springs on a node
+    (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`), the cap of every spring
+    (:data:`~hollowbody.contact.law.CAP_LIMIT`). mloc (L,) kg nodal masses
     of the rows (rigid-body nodes: the body's mass per node; fixed nodes: inf);
     wsum (L,) summed weights of this cycle's springs per row
     (:func:`scatter_weights`); imm (L,) int8 1 for rows that no contact force

@@ -35,7 +35,6 @@ allocated here, none per cycle (the bucket sort, every
 
 from __future__ import annotations
 
-import os
 from typing import ClassVar
 
 import numpy as np
@@ -236,7 +235,7 @@ class ContactRuntime:
                                  cdef.sofscl, cdef.fs, cdef.fd, cdef.dc, cdef.vdc,
                                  1.0 if (cdef.fs > 0.0 or cdef.fd > 0.0) else 0.0,
                                  STIFFEN_FRACTION, STIFFEN_LIMIT,
-                                 float(os.environ.get("HB_CAP", CAP_LIMIT))])
+                                 CAP_LIMIT])
         self._node_ids = np.asarray(model.node_ids, dtype=np.int64)
         ms_cache: dict[float, Surface] = {}
 
