@@ -5,7 +5,8 @@ Numba functions called per node-segment pair by
 (gap) of a node, reach = (t_node + t_seg) / 2 and the release depth D behind
 the segment (:func:`release_depth`), the node is in contact for
 0 < g < G = reach + D and released beyond. The force (:func:`penalty_force`)
-is ``k g`` up to ``g1 = STIFFEN_FRACTION * G``; deeper, the tangent
+is the spring force (:func:`spring_force`: incremental, at most ``k g``, k
+capped by :func:`stable_stiffness`) up to ``g1 = STIFFEN_FRACTION * G``; deeper, the tangent
 stiffness rises, incrementally, to the nodal stability bound at the current
 step (:func:`deep_stiffness`). Why: with SOFT=1 the spring k is set from the
 initial step; a crushed soft tissue is one to two orders of magnitude
