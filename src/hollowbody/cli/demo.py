@@ -5,8 +5,8 @@ calibration of the hollow walls' Young's modulus and yield stress, the
 solid-vs-hollow overlay (the paper's Fig. 2), a Table 1-like table and the
 efficiency and stability study at 40, 70 and 100 km/h, all in one folder with
 index.md and index.html. Default budget: 15 mm mesh, 12 ms, population 6 x 3
-generations on 2 worker processes; --quick: 30 mm mesh, 6 ms, 4 x 2 (a smoke
-test of the pipeline). See docs/calibrate.md.
+generations on 2 worker processes; --quick: the same mesh, 6 ms, 4 x 2 (a
+smoke test of the pipeline). See docs/calibrate.md.
 
 Exit codes: 0 done, 2 bad input, 3 the calibration could not run, 130
 interrupted.

@@ -127,7 +127,7 @@ def junction_exclusions(x0: np.ndarray, nodes: np.ndarray, n_thick: np.ndarray,
     """Excluded pairs of one pass (see module docstring).
 
     x0: (L, 3) mm initial local coordinates; the pass arrays as in
-    :func:`hollowbody.contact.penalty.contact_pass`; ptr / cand: candidate
+    :func:`hollowbody.contact.detect.detect_pass`; ptr / cand: candidate
     pairs at x0 (capture distance, no margin); graph: :func:`edge_graph`.
     Returns ex_ptr (ns + 1,) int64, ex_seg int32 (CSR per node) and the
     number of initial contacts that are kept.

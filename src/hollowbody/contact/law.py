@@ -5,7 +5,8 @@ Numba functions called per node-segment pair by
 (gap) of a node, reach = (t_node + t_seg) / 2 and the release depth D behind
 the segment (:func:`release_depth`), the node is in contact for
 0 < g < G = reach + D and released beyond. The force (:func:`penalty_force`)
-is ``k g`` up to ``g1 = STIFFEN_FRACTION * G``; deeper, the tangent
+is the spring force (:func:`spring_force`: incremental, at most ``k g``, k
+capped by :func:`stable_stiffness`) up to ``g1 = STIFFEN_FRACTION * G``; deeper, the tangent
 stiffness rises, incrementally, to the nodal stability bound at the current
 step (:func:`deep_stiffness`). Why: with SOFT=1 the spring k is set from the
 initial step; a crushed soft tissue is one to two orders of magnitude
@@ -24,6 +25,11 @@ from hollowbody.contact.geometry import project_corners
 #: Default start of the stiffened zone, as a fraction of the penetration at
 #: release (params[8]; a value >= 1 disables it).
 STIFFEN_FRACTION = 0.5
+#: (omega dt)^2 allowed for all contact springs on a node, the bound every spring
+#: stiffness is capped to (:func:`stable_stiffness`): by Weyl's inequality the
+#: eigenvalues of element and contact stiffness add at most, and elements use up
+#: to (2 TSSFAC)^2 = 3.24 of the central-difference limit 4 at TSSFAC 0.9.
+CAP_LIMIT = 1.5
 #: (omega dt)^2 allowed for all contact springs on a node in the stiffened zone
 #: (params[9]); with the elements' (omega dt)^2 <= (2 TSSFAC)^2 = 3.24 the sum
 #: stays below the central-difference limit 4.
@@ -95,7 +101,82 @@ def penalty_force(gap, gap_prev, fd_prev, k, kd, g1, ramp):
 
 
 @njit(cache=True, inline="always")
-def deep_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wprev, limit, dt):
+def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
+    """Spring part of the normal force (kN) at penetration gap (mm), incremental.
+
+    ``same``: in contact with the same segment last cycle (gap_prev mm its gap
+    then, f_prev kN the spring force then): ``F = f_prev + k (gap - gap_prev)``.
+    ``held`` but not same (the node moved on to another segment, whose gap may
+    differ from the last one's by a fold's angle): ``F = f_prev - k dn`` with
+    dn = v_n dt (mm) the normal relative motion of this step (negative when
+    approaching). Both bounded, ``0 <= F <= k gap``. A fresh contact:
+    ``F = k gap`` (an initial penetration between surfaces not joined by the
+    mesh is pushed apart).
+
+    Why: with the total form ``k gap`` every jump of the gap at a fixed position
+    (a change of segment across a fold, a rise of k) is a jump of the force,
+    and the node is pushed out with more energy than it came in with; in
+    folding shell walls this made the contact energy negative (hollow block,
+    40 km/h: -23 J of 309 J). Incremental, k may change from cycle to cycle
+    (the stability cap follows the springs on each node) without a force jump;
+    a drop of k lowers the bound ``k gap`` (dissipative, never generative).
+    """
+    if same:
+        f = f_prev + k * (gap - gap_prev)
+    elif held:
+        f = f_prev - k * dn
+    else:
+        return k * gap
+    top = k * gap
+    if f > top:
+        return top
+    if f < 0.0:
+        return 0.0
+    return f
+
+
+@njit(cache=True, inline="always")
+def stable_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wsum, limit, dt):
+    """Largest spring stiffness (kN/mm) of the pair node nd - segment (a, b, c, d)
+    (shape functions w at the contact point) that keeps every movable node j of
+    the pair within ``(omega dt)^2 = limit`` with all its contact springs of this
+    cycle together (0: no bound, every participant immovable).
+
+    Row-sum (Gershgorin) bound of the pair stiffness ``k u u^T`` over the movable
+    participants, u = (1, -w): row j is ``k |u_j| S`` with S the sum of |u| over
+    them (2 for a node on a deformable segment, 1 against a rigid or fixed one);
+    with W_j the summed weights of this cycle's springs on j,
+    ``k W_j S / m_j <= limit / dt^2``. mloc (L,) kg (inf: rigid or fixed),
+    wsum (L,) -, dt ms.
+    """
+    s = 0.0
+    if mloc[nd] < 1.0e300:
+        s += 1.0
+    if w0 > 0.0 and mloc[a] < 1.0e300:
+        s += w0
+    if w1 > 0.0 and mloc[b] < 1.0e300:
+        s += w1
+    if w2 > 0.0 and mloc[c] < 1.0e300:
+        s += w2
+    if w3 > 0.0 and d != c and mloc[d] < 1.0e300:
+        s += w3
+    m = mloc[nd] / max(wsum[nd], 1.0)
+    if w0 > 0.0:
+        m = min(m, mloc[a] / max(wsum[a], w0))
+    if w1 > 0.0:
+        m = min(m, mloc[b] / max(wsum[b], w1))
+    if w2 > 0.0:
+        m = min(m, mloc[c] / max(wsum[c], w2))
+    if w3 > 0.0 and d != c:
+        m = min(m, mloc[d] / max(wsum[d], w3))
+    dt2 = dt * dt
+    if m >= 1.0e300 or not dt2 > 0.0 or s <= 0.0:
+        return 0.0
+    return limit * m / (s * dt2)
+
+
+@njit(cache=True, inline="always")
+def deep_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wsum, limit, dt):
     """Tangent stiffness (kN/mm) of the stiffened zone for the pair node nd - segment
     (a, b, c, d) with shape functions w at the contact point.
 
@@ -104,18 +185,18 @@ def deep_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wprev, limit, dt):
     ``(omega dt)^2 = limit`` from all its contact springs together, by the
     row-sum (Gershgorin) bound of the pair stiffness ``k u u^T``,
     u = (1, -w): ``2 k W_j / m_j <= limit / dt^2`` with W_j the summed weights
-    of the springs on j in the last cycle (at least 1). mloc (L,) kg,
-    wprev (L,) -, dt ms. 0 when every participant is rigid.
+    of the springs on j in this cycle (at least 1). mloc (L,) kg,
+    wsum (L,) -, dt ms. 0 when every participant is rigid.
     """
-    m = mloc[nd] / max(wprev[nd], 1.0)
+    m = mloc[nd] / max(wsum[nd], 1.0)
     if w0 > 0.0:
-        m = min(m, mloc[a] / max(wprev[a], 1.0))
+        m = min(m, mloc[a] / max(wsum[a], 1.0))
     if w1 > 0.0:
-        m = min(m, mloc[b] / max(wprev[b], 1.0))
+        m = min(m, mloc[b] / max(wsum[b], 1.0))
     if w2 > 0.0:
-        m = min(m, mloc[c] / max(wprev[c], 1.0))
+        m = min(m, mloc[c] / max(wsum[c], 1.0))
     if w3 > 0.0 and d != c:
-        m = min(m, mloc[d] / max(wprev[d], 1.0))
+        m = min(m, mloc[d] / max(wsum[d], 1.0))
     dt2 = dt * dt
     if m >= 1.0e300 or not dt2 > 0.0:
         return 0.0
@@ -123,10 +204,11 @@ def deep_stiffness(nd, a, b, c, d, w0, w1, w2, w3, mloc, wprev, limit, dt):
 
 
 @njit(cache=True)
-def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, mz):
+def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, mz, extra):
     """s if the node at p (thickness tn) is behind segment s, the one it was in
     contact with last cycle (with contact normal m, zero if unknown), by more
-    than the release depth, else -1."""
+    than the release depth (plus extra mm, the penetration held, see
+    :func:`spring_force`), else -1."""
     a = seg[s, 0]
     b = seg[s, 1]
     c = seg[s, 2]
@@ -148,6 +230,6 @@ def pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, s, mx, my, m
         if al < 0.0:
             d = -d
     reach = 0.5 * (tn + s_thick[s])
-    if d <= -release_depth(s_depth[s], reach, two):
+    if d <= -(release_depth(s_depth[s], reach, two) + extra):
         return s
     return -1

@@ -42,6 +42,7 @@ from numba import get_num_threads
 
 from hollowbody.contact.bucket import bucket_sort
 from hollowbody.contact.checks import clean_surface, segment_elements
+from hollowbody.contact.detect import detect_pass, detect_pass_serial
 from hollowbody.contact.exclusion import (
     edge_graph,
     junction_exclusions,
@@ -49,16 +50,17 @@ from hollowbody.contact.exclusion import (
     ring_exclusions,
 )
 from hollowbody.contact.frames import segment_frames, segment_frames_of
-from hollowbody.contact.law import STIFFEN_FRACTION, STIFFEN_LIMIT
+from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
     active_rows,
-    contact_pass,
-    contact_pass_serial,
     count_through,
     finish,
+    force_pass,
+    force_pass_serial,
     gather,
     scatter_pass,
+    scatter_weights,
 )
 from hollowbody.contact.stiffness import (
     node_effective_mass,
@@ -96,21 +98,24 @@ MAX_EVENTS = 20
 
 
 class _Pass:
-    """Arrays of one node-vs-segment pass (local numbering), see contact_pass.
+    """Arrays of one node-vs-segment pass (local numbering), see detect_pass / force_pass.
 
     ``STATE_FIELDS``: what a restart must save and put back for the run to continue
     bit for bit: the far and near lists and their segment lists (rebound with a
     new length at every sort / filter: put back by assignment, not in place; fact
     and act are views of work buffers until the next filter), the filter's stamps,
     the per-node contact history (last segment, weights, force, gap, normal,
-    friction force, damping force, entry flag, pass-through segment) and which
-    segments are alive (erosion). The segment frames and boxes are recomputed
-    before they are read (every cycle / filter) and are not state.
+    friction force, stiffening and spring force, held penetration, entry flag,
+    pass-through segment) and
+    which segments are alive (erosion). The segment frames and boxes are recomputed
+    before they are read (every cycle / filter) and are not state, nor are the
+    detection's hand-overs to the force pass (gold, sold, orel).
     """
 
     STATE_FIELDS: ClassVar[tuple[str, ...]] = (
         "ptr", "cand", "sact", "nptr", "ncand", "fact", "act", "_mark",
-        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "oentry", "othru", "seg_alive")
+        "ft", "nprev", "oseg", "ow", "of", "ogap", "ofd", "ofn", "odel", "oentry", "othru",
+        "seg_alive")
 
     def __init__(self, nodes, n_thick, n_k, n_mass, seg, s_thick, s_k, s_mass, s_depth,
                  s_two, sign: float) -> None:
@@ -158,6 +163,12 @@ class _Pass:
         self.of = np.zeros((ns, 3))
         self.ogap = np.zeros(ns)
         self.ofd = np.zeros(ns)
+        self.ofn = np.zeros(ns)
+        self.odel = np.zeros(ns)
+        # detection -> force pass of the same cycle: last gap, last segment, release gap
+        self.gold = np.zeros(ns)
+        self.sold = np.full(ns, -1, np.int32)
+        self.orel = np.zeros(ns)
         self.oentry = np.zeros(ns, np.int8)
         self.othru = np.full(ns, -1, np.int32)
         self.fsum = np.zeros(3)
@@ -201,7 +212,7 @@ class ContactRuntime:
     STATE_FIELDS: ClassVar[tuple[str, ...]] = (
         "time", "energy", "n_active", "slave_force", "master_force",
         "n_pass_through", "pass_through_nodes", "events", "_pending",
-        "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev", "_wprev",
+        "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev",
         "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc")
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
@@ -223,7 +234,8 @@ class ContactRuntime:
         self._params = np.array([model.controls.slsfac, 1.0 if cdef.soft >= 1 else 0.0,
                                  cdef.sofscl, cdef.fs, cdef.fd, cdef.dc, cdef.vdc,
                                  1.0 if (cdef.fs > 0.0 or cdef.fd > 0.0) else 0.0,
-                                 STIFFEN_FRACTION, STIFFEN_LIMIT])
+                                 STIFFEN_FRACTION, STIFFEN_LIMIT,
+                                 CAP_LIMIT])
         self._node_ids = np.asarray(model.node_ids, dtype=np.int64)
         ms_cache: dict[float, Surface] = {}
 
@@ -327,8 +339,7 @@ class ContactRuntime:
         self._mloc = np.where(rigid_node[self.nodes], share[self.nodes],
                               np.where(fixed[self.nodes], np.inf, node_mass[self.nodes]))
         self._imm = (rigid_node | fixed)[self.nodes].astype(np.int8)
-        self._wprev = np.zeros(nl)
-        self._wnew = np.zeros(nl)
+        self._wsum = np.zeros(nl)
         self._xl = np.zeros((nl, 3))
         self._vl = np.zeros((nl, 3))
         self._xsort = np.zeros((nl, 3))
@@ -524,27 +535,28 @@ class ContactRuntime:
             self._filter()
         self._first = False
         self._fl[:] = 0.0
-        self._wnew[:] = 0.0
+        self._wsum[:] = 0.0
         self.slave_force[:] = 0.0
         n_act = 0
-        for p in self.passes:
-            if p.seg.shape[0] == 0:
-                continue
-            par = self._threaded(p)
+        live = [p for p in self.passes if p.seg.shape[0]]
+        for p in live:  # every pair of this cycle first: the springs on each node
             segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp)
-            (contact_pass if par else contact_pass_serial)(
-                p.act, self._xl, self._vl, dt, self._dtc, p.nodes, p.n_thick, p.n_k, p.n_mass,
-                p.seg, p.s_thick, p.s_k, p.s_mass, p.s_depth, p.s_two, p.cen, p.nrm, p.rad2, p.warp,
-                p.nptr, p.ncand, self._params, self._mloc, self._wprev, self._imm, p.ft,
-                p.nprev, p.oseg, p.ow, p.of, p.ogap, p.ofd, p.oentry, p.othru)
+            (detect_pass if self._threaded(p) else detect_pass_serial)(
+                p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
+                p.cen, p.nrm, p.rad2, p.warp, p.nptr, p.ncand, p.nprev, p.oseg, p.ow, p.ogap,
+                p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
+            scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
+        for p in live:
+            (force_pass if self._threaded(p) else force_pass_serial)(
+                p.act, self._vl, dt, self._dtc, p.nodes, p.n_k, p.n_mass, p.seg, p.s_k,
+                p.s_mass, self._params, self._mloc, self._wsum, self._imm, p.ft, p.nprev,
+                p.oseg, p.ow, p.ogap, p.gold, p.sold, p.orel, p.of, p.ofd, p.ofn, p.odel)
             if count_through(p.act, p.othru):
                 self._record_through(p)
             p.fsum[:] = 0.0
-            n_act += scatter_pass(p.act, p.nodes, p.seg, p.oseg, p.ow, p.of, self._fl, p.fsum,
-                                  self._wnew)
+            n_act += scatter_pass(p.act, p.nodes, p.seg, p.oseg, p.ow, p.of, self._fl, p.fsum)
             self.slave_force += p.sign * p.fsum
         self.master_force[:] = -self.slave_force
-        self._wprev[:] = self._wnew
         self.n_active = n_act
         self.energy += finish(self.nodes, self._fl, self._fprev, self._xl, self._xprev, f)
 

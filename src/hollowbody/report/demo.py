@@ -19,7 +19,7 @@ budget     mesh    hollow     population  gener-   end time     workers
            [mm]    elem/edge              ations   [ms]
 ========== ======= ========== =========== ======== ============ =========
 default    15      2          6           3        12           2
-quick      30      1          4           2        6            2
+quick      15      2          4           2        6            2
 ========== ======= ========== =========== ======== ============ =========
 
 Both calibrate E in 20..300 MPa and yield in 1..30 MPa (the default bounds
@@ -79,7 +79,7 @@ class DemoBudget:
 
 BUDGETS = {
     "default": DemoBudget(),
-    "quick": DemoBudget(name="quick", mesh=30.0, end_time=6.0, population=4, generations=2),
+    "quick": DemoBudget(name="quick", mesh=15.0, end_time=6.0, population=4, generations=2),
 }
 
 

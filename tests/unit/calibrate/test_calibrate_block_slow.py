@@ -24,10 +24,6 @@ def _hollow_available(tmp_path) -> bool:
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=(
-    "at the 30 mm mesh every hollow run is suspect (the penalty springs of ~56 impactor "
-    "nodes stack on one wall segment: k dt^2 / m ~ 24, unstable; docs/solver.md), so no "
-    "candidate can be the best; passes again once the contact stiffness is bounded"))
 def test_tiny_real_calibration(tmp_path, monkeypatch):
     if not _hollow_available(tmp_path):
         pytest.skip("the hollow block is not available yet (block_impact raised ValueError)")
