@@ -86,11 +86,11 @@ def square_tube(width: float, thickness: float, length: float, per_side: int,
     ``trigger``: amplitude as a fraction of the thickness (0: none); see the
     module doc. Returns x (n, 3) float64 mm and conn (e, 4) int32 (0-based).
     """
+    xy, nrm, shape = square_ring(width, per_side)
     if nz is None:
         nz = max(1, int(round(length / (width / per_side))))
     z = _levels(length, nz)
     _check_trigger(trigger, trigger_level, nz)
-    xy, nrm, shape = square_ring(width, per_side)
     m = xy.shape[0]
     x = np.column_stack([np.tile(xy, (nz + 1, 1)), np.repeat(z, m)])
     if trigger != 0.0:

@@ -199,7 +199,9 @@ def crush_deck(case: CrushCase, output_step: float = 0.2) -> tuple[Deck, CrushSe
     deck.add(MatPiecewiseLinearPlasticity(mid=1, ro=mat["ro"], e=mat["e"], pr=mat["pr"],
                                           sigy=mat["sigy"], etan=mat["etan"],
                                           title=case.material))
-    plate_mass = 20.0  # kg; the motion is prescribed, the mass only sets the plate's KE
+    # the motion is prescribed: the mass only sets the plate's kinetic energy, kept small
+    # (0.1 kg: 5 J at 10 m/s against 1-5 kJ of crush) so that the energy ratio is the tube's
+    plate_mass = 0.1
     deck.add(MatRigid(mid=2, ro=plate_mass / ((2.0 * half) ** 2 * PLATE_T), e=210.0, pr=0.3,
                       cmo=1, con1=4, con2=7, title="plate"))
     t_ramp = 2.0 * RAMP / case.speed

@@ -27,7 +27,7 @@ effective-crush factor as the closed form, so the comparison is of fold
 lengths, not of that factor). The peaks are counted from H / 2 on (past the
 initial buckling peak, which comes within the first mm) to d1, so that a
 coarse run with few folds still gives two. Peaks are taken on the force resampled every
-0.1 mm and smoothed over 0.1 x 2 H; a major peak rises by at least 15 % of
+0.1 mm and smoothed over 0.1 x 2 H; a major peak rises by at least 10 % of
 P_m above the troughs on either side (prominence). A run whose folds make two
 peaks each gives about half the closed-form length: read it as such.
 
@@ -89,7 +89,7 @@ def fold_peaks(d: np.ndarray, f: np.ndarray, d0: float, d1: float, half_fold: fl
     step = grid[1] - grid[0] if grid.size > 1 else 0.1
     w = max(1, int(round(0.2 * half_fold / step)))
     smooth = np.convolve(g, np.ones(w) / w, mode="same")
-    peaks, _ = find_peaks(smooth, prominence=0.15 * abs(p_mean),
+    peaks, _ = find_peaks(smooth, prominence=0.10 * abs(p_mean),
                           distance=max(1, int(0.5 * half_fold / step)))
     at = grid[peaks]
     return at[(at >= d0) & (at <= d1)]
