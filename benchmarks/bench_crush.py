@@ -40,17 +40,20 @@ def _length(shape: str, size: float, t: float, folds: float) -> float:
 
 
 def cases(speed: float = 10.0) -> list[CrushCase]:
-    """The benchmark's cases, most informative first (the budget cuts the tail)."""
+    """The benchmark's cases, most informative first (the budget cuts the tail); ``speed``
+    mm/ms (the last two cases run at half of it)."""
     out = []
 
     def sq(t: float, **kw) -> CrushCase:
+        kw.setdefault("speed", speed)
         return CrushCase(shape="square", size=50.0, t=t, length=_length("square", 50.0, t, 8.0),
-                         speed=speed, **kw)
+                         **kw)
 
     def circ(t: float, **kw) -> CrushCase:
         kw.setdefault("per_half_fold", 2.0)
+        kw.setdefault("speed", speed)
         return CrushCase(shape="circular", size=60.0, t=t,
-                         length=_length("circular", 60.0, t, 10.0), speed=speed, **kw)
+                         length=_length("circular", 60.0, t, 10.0), **kw)
 
     out.append(sq(1.5))                              # C/t 33, aluminium, trigger, 3 / H
     out.append(sq(2.5))                              # C/t 20
@@ -62,6 +65,11 @@ def cases(speed: float = 10.0) -> list[CrushCase]:
     out.append(circ(1.2))                            # D/t 50
     out.append(circ(2.0, material="steel"))
     out.append(sq(1.5, per_half_fold=4.0))
+    out.append(sq(2.5, per_half_fold=4.0))           # mesh convergence at C/t 20 and 50
+    out.append(sq(1.0, per_half_fold=4.0))
+    out.append(sq(1.5, material="steel", per_half_fold=4.0))
+    out.append(sq(1.5, speed=0.5 * speed))           # inertia: half the speed
+    out.append(sq(1.5, material="steel", speed=0.5 * speed))
     return out
 
 

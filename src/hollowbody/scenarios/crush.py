@@ -111,7 +111,7 @@ class CrushCase:
     def name(self) -> str:
         trig = f"trig{self.trigger:g}" if self.trigger else "notrig"
         return (f"{self.shape}-{self.material}-{self.size:g}x{self.t:g}x{self.length:g}"
-                f"-n{self.per_half_fold:g}-{trig}")
+                f"-n{self.per_half_fold:g}-{trig}-v{self.speed:g}")
 
     def sigma0(self) -> float:
         """Flow stress (GPa) of the yardstick: energy-equivalent (crush_theory.flow_stress)."""
@@ -192,7 +192,7 @@ def crush_deck(case: CrushCase, output_step: float = 0.2) -> tuple[Deck, CrushSe
     hgid = 1 if case.hourglass is not None else 0
     deck.add(Part(pid=PID_TUBE, secid=1, mid=1, hgid=hgid, title="tube"))
     deck.add(Part(pid=PID_PLATE, secid=2, mid=2, title="plate (rigid)"))
-    deck.add(SectionShell(secid=1, elform=2, shrf=5.0 / 6.0, t1=case.t, nip=5))
+    deck.add(SectionShell(secid=1, elform=2, shrf=0.833333, t1=case.t, nip=5))
     deck.add(SectionShell(secid=2, elform=2, t1=PLATE_T, nip=2))
     if case.hourglass is not None:
         deck.add(Hourglass(hgid=1, ihq=int(case.hourglass[0]), qm=float(case.hourglass[1])))
