@@ -3,7 +3,8 @@
 C = 40 mm, t = 2 mm (C/t = 20), L = 100 mm (6.9 closed-form half folds),
 3 elements per half fold (8 per side, 5 mm), trigger 0.3 t near the loaded
 end, MAT_024 sigma_y 0.25 GPa perfectly plastic, plate at 15 m/s to 72 % of
-L (:mod:`hollowbody.scenarios.crush`). One run serves every test.
+L (:mod:`hollowbody.scenarios.crush`). One run (about 20 s on one core) serves
+every test.
 
 What holds today, with its band:
 
