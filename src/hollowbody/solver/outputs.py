@@ -62,6 +62,16 @@ def _earlier_run(out: Path) -> list[str]:
     return sorted({f.name for pat in EARLIER_RUN for f in out.glob(pat)})
 
 
+def _existing_folder(out: Path, inputs: tuple[Path, ...]) -> set[Path] | None:
+    """The resolved input paths when ``out`` is an existing folder, None when it does not
+    exist yet; a file in its place is a UserInputError."""
+    if out.exists() and not out.is_dir():
+        raise UserInputError(f"{out} is a file, not an output folder")
+    if not out.is_dir():
+        return None
+    return {Path(p).resolve() for p in inputs}
+
+
 def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -> None:
     """Check (and with ``overwrite`` clear) the output folder before a run writes to it.
 
@@ -71,11 +81,9 @@ def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -
     whose name is that of a run output is refused.
     """
     out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise UserInputError(f"{out} is a file, not an output folder")
-    if not out.is_dir():
+    keep = _existing_folder(out, inputs)
+    if keep is None:
         return
-    keep = {Path(p).resolve() for p in inputs}
     outputs = sorted({f for pat in RUN_OUTPUTS for f in out.glob(pat) if f.is_file()})
     clash = [f.name for f in outputs if f.resolve() in keep]
     if clash:
@@ -108,11 +116,9 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
     never deleted: one that would be is refused.
     """
     out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise UserInputError(f"{out} is a file, not an output folder")
-    if not out.is_dir():
+    keep = _existing_folder(out, inputs)
+    if keep is None:
         return
-    keep = {Path(p).resolve() for p in inputs}
     own = sorted({f for pat in files for f in out.glob(pat) if f.is_file()})
     runs = sorted({d for pat in run_dirs for d in out.glob(pat)
                    if d.is_dir() and _earlier_run(d)})
