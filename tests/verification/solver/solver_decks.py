@@ -41,7 +41,7 @@ def cube_and_plate(*, e: float = 0.01, pr: float = 0.3, h: float = 5.0, n: int =
                    plate_mass: float = 1.0, speed: float = 5.0, end: float = 2.0,
                    friction: float = 0.0, ihq: int = 4, qh: float = 0.05,
                    fixed_bottom: bool = True, dtmin: float = 0.0, erode: int = 0,
-                   gap: float = 0.1, crush: float = 0.0, tssfac: float = 0.9) -> Deck:
+                   gap: float = 0.1, crush: float = 0.0) -> Deck:
     """An elastic cube (n^3 hexes of edge h) struck on top by a rigid plate moving -z.
 
     crush > 0: instead, the cube's top nodes are driven down by ``crush`` mm
@@ -78,7 +78,7 @@ def cube_and_plate(*, e: float = 0.01, pr: float = 0.3, h: float = 5.0, n: int =
     deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=1, ssid=1, sstyp=3, msid=2,
                      mstyp=3, fs=friction, fd=friction, soft=1))
     deck.add(ControlTermination(endtim=end, dtmin=dtmin))
-    deck.add(ControlTimestep(tssfac=tssfac, erode=erode))
+    deck.add(ControlTimestep(tssfac=0.9, erode=erode))
     for name in ("GLSTAT", "RCFORC", "NODOUT", "SPCFORC", "MATSUM"):
         deck.add(DatabaseAscii(name=name, dt=end / 200))
     deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
