@@ -20,16 +20,29 @@ k    mesh                       K >> G       nu = 0.3
 3    2 x 2 x 2 ... 4 x 4 x 4    0.815-0.844  0.937-0.970
 ===  =========================  ===========  ===========
 
-The factor is ``sqrt(M / max(M, gamma K))``, ``M = K + 4G/3``, with
-``gamma = 3 - k / 3`` for k <= 2 (3, 2.67, 2.33) and 1.5 for k = 3. Long
-explicit runs at TSSFAC 0.9 with the default bulk viscosity (random and
-alternating initial velocities, impacts) stay stable with it; gamma = 2 at
-k = 2 diverged (a 2 x 2 x 1 rubber plate), and so did every free rubber mesh
-with factor 1 (LS-DYNA's rule). So a block at least two elements thick in
-every direction runs at LS-DYNA's step for nu <= 0.32 (factor 1) and at
-0.816 of it for rubber; a one-element-thick wall at 0.655 (rubber) / 0.832
-(nu 0.3); a lone element at the full 0.577 / 0.734. Degenerate elements
-(wedges, tetrahedra) keep the lone-element factor.
+The engine uses the lone-element bound ``sqrt(M / max(M, 3K))`` for every
+group (1 at nu = 0, 0.734 at nu = 0.3, 0.577 for rubber): it is a bound for
+any mesh (an assembled mesh's omega_max is below its elements' largest), and
+with TSSFAC 0.9 it keeps omega_max dt / 2 <= 0.9 on every mesh above (0.9 for
+the lone element, 0.58-0.86 for the others).
+LS-DYNA's rule (factor 1) is not stable for rubber: free rubber meshes
+diverge within 4-30 cycles at TSSFAC 0.9, with or without the bulk viscosity.
+
+The restrained-axes relaxation ``gamma = 3 - k / 3`` for k <= 2 (3, 2.67,
+2.33) and 1.5 for k = 3 (``min_axes``) is what the element allows in small
+strain: its omega_max dt / 2 stays <= 0.96 on the meshes above, and long runs
+with random and alternating velocities and small-strain impacts stay stable
+with the default bulk viscosity (gamma = 2 at k = 2 diverged on a 2 x 2 x 1
+rubber plate). It would give LS-DYNA's step to an elastic nu 0.3 block and
+0.816 of it to a rubber block (1.41 x the lone-element step). It is not the
+default, because at the larger step (a) the SOFT=1 contact of the soft-block
+verification lets nodes of a crushed fat block through a heavy plate (any
+factor above 0.65), (b) the elastic cube struck by a rigid plate gives back
+8.8 % more contact energy than it took (quality warning), and (c) a fat block
+slammed at 40 mm/ms onto a clamped face gains 46 % energy (the lone-element
+step: 6 %; at 60 mm/ms the lone-element step gains 54 % too, so large
+compression of MAT_181 has its own limit, see docs/elements.md).
+Degenerate elements (wedges, tetrahedra) always have min_axes 0.
 """
 
 from __future__ import annotations

@@ -12,11 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hollowbody.elements.solid_step_factor import (
-    group_min_axes,
-    restrained_axes,
-    volumetric_step_factor,
-)
+from hollowbody.elements.solid_step_factor import volumetric_step_factor
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
@@ -95,8 +91,7 @@ def assemble(model: Model) -> Assembly:
                    deformable=np.ones(model.n_nodes, dtype=bool), tssfac=model.controls.tssfac,
                    node_x0=x0)
     n = model.n_nodes
-    axes = restrained_axes([g.conn for g in model.solid_groups])
-    for g, nb in zip(model.solid_groups, axes):
+    for g in model.solid_groups:
         for k, c in _solid_kind_counts(g.conn).items():
             counts[k] += c
         mat = model.material_of(g.pid)
@@ -109,8 +104,9 @@ def assemble(model: Model) -> Assembly:
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
         rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
-        rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves,
-                                                group_min_axes(g.conn, nb))
+        # the lone-element bound; why the restrained-axes relaxation is not used by
+        # default: hollowbody.elements.solid_step_factor
+        rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves)
         asm.elements.append(rt)
     for g in model.shell_groups:
         counts["shells"] += int(g.conn.shape[0])
