@@ -7,8 +7,9 @@ altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
 length, ``c`` the material's current dilatational wave speed. The solver
 multiplies the minimum by TSSFAC (0.9). Units: mm, ms, mm/ms.
 
-This is an estimate, not a bound: for nearly incompressible materials on
-coarse free meshes the exact limit is about 0.85 of it (docs/elements.md).
+This is an estimate, not a bound: elements with free faces have stiffer
+volumetric modes (a lone element 1/sqrt(3) of it for K >> G); the solver
+applies the factor of :mod:`hollowbody.elements.solid_step_factor`.
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hollowbody.elements.solid_step_factor import volumetric_step_factor
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
@@ -76,43 +77,6 @@ def _part_share(n: int, conn: np.ndarray, elem_mass: np.ndarray) -> PartShare:
     return PartShare(nodes=nodes, mass=m[nodes])
 
 
-def volumetric_step_factor(kind: str, params: dict[str, float], curves: dict) -> float:
-    """Factor (<= 1) on the L/c step of one-point hexahedra that keeps them stable.
-
-    The usual rule dt = L_e / c with c^2 = (K + 4G/3) / rho is the exact limit
-    of a unit cube's uniaxial mode, but the cube's volumetric mode (all nodes
-    moving radially) has w^2 = 12 K / (rho h^2), i.e. dt = h / sqrt(3 K / rho).
-    For nearly incompressible materials (K >> G: rubbers, soft tissue) that is
-    1/sqrt(3) of the usual rule, and the maximum eigenvalue of an assembled
-    mesh with free surfaces approaches the single element's (measured: a
-    rubber block with free sides diverges at TSSFAC 0.9 and is stable at
-    0.5). We therefore use c_eff^2 = max(K + 4G/3, 3K) / rho; the factor is
-    c / c_eff = sqrt((K + 4G/3) / max(K + 4G/3, 3K)) (1 at nu = 0, 0.73 at
-    nu = 0.3, 0.58 for rubber).
-    """
-    if kind == "elastic":
-        e, nu = params.get("E", 0.0), params.get("PR", 0.0)
-        if e <= 0.0 or nu >= 0.5:
-            return 1.0
-        k, g = e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))
-    elif kind == "rubber181":
-        k = params.get("KM", 0.0)
-        curve = curves.get(int(params.get("LCID", 0)))
-        g = 0.0
-        if curve is not None and curve.x.size >= 2:
-            sgl = params.get("SGL", 1.0) or 1.0
-            area = (params.get("SW", 1.0) or 1.0) * (params.get("ST", 1.0) or 1.0)
-            strain, stress = curve.x / sgl, curve.y / area
-            slope = np.gradient(stress, strain)
-            g = max(float(np.interp(0.0, strain, slope)), 0.0) / 3.0
-    else:
-        return 1.0
-    m = k + 4.0 * g / 3.0
-    if m <= 0.0 or k <= 0.0:
-        return 1.0
-    return float(np.sqrt(m / max(m, 3.0 * k)))
-
-
 def assemble(model: Model) -> Assembly:
     """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
     from hollowbody.contact import ContactRuntime
@@ -140,6 +104,8 @@ def assemble(model: Model) -> Assembly:
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
         rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
+        # the lone-element bound; why the restrained-axes relaxation is not used by
+        # default: hollowbody.elements.solid_step_factor
         rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves)
         asm.elements.append(rt)
     for g in model.shell_groups:

@@ -33,7 +33,7 @@ def test_hand_computed_masses_and_time_steps(capsys):
     assert s["element_mass_kg"] == 0.5
     # elastic cube: c = sqrt(E (1 - nu) / ((1 + nu)(1 - 2 nu)) / rho), L = V / A = 10, times
     # the one-point hexahedron's volumetric-mode factor sqrt((1 - nu) / (1 + nu)) (the run's
-    # rule, hollowbody.solver.setup.volumetric_step_factor)
+    # rule, hollowbody.elements.solid_step_factor.volumetric_step_factor)
     c = math.sqrt(0.21 * 0.7 / (1.3 * 0.4) / 1.0e-6)
     assert s["time_step"]["solid"] == {"dt": pytest.approx(10.0 / c * math.sqrt(0.7 / 1.3)),
                                        "element": 1, "part": 1}
