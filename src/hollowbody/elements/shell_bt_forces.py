@@ -97,7 +97,9 @@ K_HG_KIND = 1  # HG_NONE, HG_VISCOUS or HG_STIFFNESS
 K_QH = 2  # hourglass coefficient
 K_DRILL = 3  # drilling stiffness factor (k = factor * G t A per node)
 K_THICK_UPDATE = 4  # 1: thickness follows the through-thickness strain
-N_CONTROLS = 5
+K_DRILL_TANGENT = 5  # 1: drilling moment increments scaled by the element's tangent ratio
+K_HG_TANGENT = 6  # 1: stiffness-hourglass increments scaled by the tangent ratio (opt-in)
+N_CONTROLS = 7
 
 
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
@@ -130,6 +132,20 @@ def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
             out2 = diag
             out5 = off
     return out0, out1, out2, out3, out4, out5
+
+
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def tangent_ratio(w_actual, w_elastic):
+    """Ratio of the actual to the elastic-trial incremental work of a section, in
+    [TANGENT_FLOOR, 1] (1 when the step did no elastic work: at rest, or elastic)."""
+    if w_elastic <= 1.0e-300:
+        return 1.0
+    return min(1.0, max(TANGENT_FLOOR, w_actual / w_elastic))
+
+
+#: Smallest tangent ratio (a fully yielded, perfectly plastic section still keeps
+#: this fraction of its elastic stabilization stiffness).
+TANGENT_FLOOR = 0.01
 
 
 #: The law module of an element loop built by :func:`make_shell_kernel` (each law's
@@ -183,6 +199,8 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     qh = kp[K_QH]
     drill_k = kp[K_DRILL]
     update_thickness = kp[K_THICK_UPDATE] > 0.0
+    drill_tangent = kp[K_DRILL_TANGENT] > 0.0
+    hg_tangent = kp[K_HG_TANGENT] > 0.0
     kind = _law.KIND
     e_mod = mp[P_E]
     nu = mp[P_NU]
@@ -240,6 +258,12 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
         dzz = 0.0
         pm = 0.0
         nfail = 0
+        # tangent ratios: actual / elastic-trial incremental work, uniform (membrane) and
+        # z^2-weighted (bending) over the points
+        wa_m = 0.0
+        we_m = 0.0
+        wa_b = 0.0
+        we_b = 0.0
         for k in range(nip):
             z = zeta[k] * h2
             wk = wts[k] * h2
@@ -272,6 +296,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                 epn = epsp[i, k]
                 # elastic trial and yield check here; the return mapping only when needed
                 q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+                dwe = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                we_m += wk * dwe
+                we_b += wk * z * z * dwe
                 x0 = q0 - a0
                 x1 = q1 - a1
                 x2 = q2 - a2
@@ -286,6 +313,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                     back[i, k, 1] = a1
                     back[i, k, 2] = a2
                 epsp[i, k] = epn
+                dwa = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                wa_m += wk * dwa
+                wa_b += wk * z * z * dwa
                 pm = max(pm, epn)
                 if fail > 0.0 and epn >= fail:
                     pfail[i, k] = 1
@@ -301,6 +331,8 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             mxx += wk * z * q0
             myy += wk * z * q1
             mxy += wk * z * q2
+        eta_m = tangent_ratio(wa_m, we_m)
+        eta_b = tangent_ratio(wa_b, we_b)
         # transverse shear: elastic, uniform through the thickness, SHRF on the resultant
         to0 = tau[i, 0]
         to1 = tau[i, 1]
@@ -387,6 +419,12 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             hw = o2 + qh * kw * qw * dt
             htx = o3 + qh * kr * qtx * dt
             hty = o4 + qh * kr * qty * dt
+            if hg_tangent:  # the section's current tangent ratio (passive: see below)
+                hmx *= eta_m
+                hmy *= eta_m
+                hw *= eta_b
+                htx *= eta_b
+                hty *= eta_b
             hgq[i, 0] = hmx
             hgq[i, 1] = hmy
             hgq[i, 2] = hw
@@ -418,6 +456,11 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             dr1 = o1 + kd * r1
             dr2 = o2 + kd * r2_
             dr3 = o3 + kd * r3
+            if drill_tangent:  # the section's current tangent ratio (passive: see below)
+                dr0 *= eta_m
+                dr1 *= eta_m
+                dr2 *= eta_m
+                dr3 *= eta_m
             drill[i, 0] = dr0
             drill[i, 1] = dr1
             drill[i, 2] = dr2

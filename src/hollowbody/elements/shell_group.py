@@ -38,7 +38,9 @@ from hollowbody.elements.shell_bt_forces import (
     HG_STIFFNESS,
     HG_VISCOUS,
     K_DRILL,
+    K_DRILL_TANGENT,
     K_HG_KIND,
+    K_HG_TANGENT,
     K_QH,
     K_SHRF,
     K_THICK_UPDATE,
@@ -95,7 +97,8 @@ class ShellGroupRuntime:
 
     def __init__(self, group: ShellGroup, material: MaterialDef, section: SectionDef,
                  hourglass: HourglassDef, curves: dict[int, Curve], node_x0: np.ndarray,
-                 *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING) -> None:
+                 *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING,
+                 drilling_tangent: bool = True, hourglass_tangent: bool = False) -> None:
         self.pid = int(group.pid)
         self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
         self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)
@@ -182,6 +185,10 @@ class ShellGroupRuntime:
         self._controls[K_QH] = self.qh
         self._controls[K_DRILL] = self.drilling
         self._controls[K_THICK_UPDATE] = 1.0 if self.thickness_update else 0.0
+        self.drilling_tangent = bool(drilling_tangent)
+        self.hourglass_tangent = bool(hourglass_tangent)
+        self._controls[K_DRILL_TANGENT] = 1.0 if self.drilling_tangent else 0.0
+        self._controls[K_HG_TANGENT] = 1.0 if self.hourglass_tangent else 0.0
         self._wzero = np.zeros((0, 3))
         self._mzero = np.zeros((1, 3))
 

@@ -1,0 +1,157 @@
+"""Stabilization stiffness that follows the section's tangent (drilling spring, and the
+opt-in physical form of the stiffness hourglass control).
+
+One 10 x 10 x 1 mm element is driven kinematically (nodal velocities and spins set,
+the kernel called once per step): an in-plane stretch (v_x = rate * x, v_y = 0)
+takes the section through yield, a uniform nodal spin about the normal loads the
+drilling springs (the element itself does not spin), an out-of-plane velocity
+pattern h = (1, -1, 1, -1) loads the w hourglass mode. The tangent ratio of a step
+is the section's actual / elastic-trial incremental work, in [TANGENT_FLOOR, 1].
+
+What must hold:
+- an elastic section: tangent ratio 1, the spring moments are bit-identical to the
+  plain elastic springs (the setting changes nothing there);
+- a section in perfectly plastic flow: the spring moment is at most ~TANGENT_FLOOR
+  of what the elastic spring holds (the spring is never stiffer than the material
+  it stands in for); back in the elastic range the increments are the elastic ones
+  again (k r dt to 1e-9);
+- passivity: the work done on the springs never falls below the energy they hold
+  (sum m^2 / 2k), also when a moment built up elastically is unloaded while the
+  section flows plastically (an increment-only tangent scaling gives back
+  m |dtheta| per step from a spring that no longer holds it, and fails this).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shell_driver import elastic, plate_mesh, section
+
+from hollowbody.elements.shell_bt_forces import TANGENT_FLOOR
+from hollowbody.elements.shell_group import ShellGroupRuntime
+from hollowbody.model.model import HourglassDef, MaterialDef, ShellGroup
+
+E, NU, RHO, SIGY = 70.0, 0.3, 2.7e-6, 0.25
+G = E / (2.0 * (1.0 + NU))
+DT = 1.0e-3  # ms
+DRILL = 0.1
+H = np.array([1.0, -1.0, 1.0, -1.0])  # hourglass pattern of the 4 nodes
+
+
+def plastic() -> MaterialDef:
+    """MAT_003, perfectly plastic (ETAN 0)."""
+    return MaterialDef(mid=1, kind="plastic003", density=RHO,
+                       params={"E": E, "PR": NU, "SIGY": SIGY, "ETAN": 0.0, "BETA": 1.0})
+
+
+def runtime(mat: MaterialDef, hourglass: HourglassDef, **kw) -> tuple[ShellGroupRuntime,
+                                                                      np.ndarray]:
+    x, conn = plate_mesh(10.0, 10.0, 1, 1)
+    g = ShellGroup(pid=1, elem_ids=np.array([1]), conn=conn, thickness=np.ones((1, 4)))
+    kw.setdefault("drilling", DRILL)
+    return ShellGroupRuntime(g, mat, section(5), hourglass, {}, x, **kw), x
+
+
+def drive(rt: ShellGroupRuntime, x: np.ndarray, phases) -> list[dict]:
+    """Steps through ``phases`` = [(n_steps, stretch rate 1/ms, spin rad/ms, w-mode mm/ms)];
+    returns per step the drilling and hourglass state, energies and plastic strain."""
+    x = x.copy()
+    f = np.zeros_like(x)
+    mom = np.zeros_like(x)
+    rows = []
+    for n, rate, spin, wz in phases:
+        for _ in range(n):
+            v = np.zeros_like(x)
+            v[:, 0] = rate * x[:, 0]
+            v[:, 2] = wz * H
+            w = np.zeros_like(x)
+            w[:, 2] = spin
+            x += DT * v
+            f[:] = 0.0
+            mom[:] = 0.0
+            rt.add_forces(x, v, DT, f, w, mom)
+            xh = x - 0.5 * DT * v  # the kernel's half-step geometry
+            area = (xh[1, 0] - xh[0, 0]) * (xh[3, 1] - xh[0, 1])
+            k = DRILL * G * 1.0 * area  # drilling stiffness per node, t = 1 mm
+            rows.append({"drill": rt.drill[0].copy(), "hgq": rt.hgq[0].copy(),
+                         "work": rt.hourglass_energy,
+                         "stored": float((rt.drill[0] ** 2).sum() / (2.0 * k)),
+                         "k": k, "epsp": float(rt.plastic_strain[0])})
+    return rows
+
+
+NO_HG = HourglassDef(hgid=1, qm=0.0)
+
+
+def test_elastic_section_keeps_the_elastic_springs_exactly():
+    phases = [(300, 0.5, 0.02, 0.0), (300, -0.5, -0.03, 0.0)]
+    on, x = runtime(elastic(E, NU, RHO), NO_HG, drilling_tangent=True)
+    off, _ = runtime(elastic(E, NU, RHO), NO_HG, drilling_tangent=False)
+    a, b = drive(on, x, phases), drive(off, x, phases)
+    assert np.abs(a[-1]["drill"]).max() > 0.0
+    for ra, rb in zip(a, b):
+        assert np.array_equal(ra["drill"], rb["drill"])
+
+
+def test_plastic_flow_releases_the_drilling_spring_and_unloading_restores_it():
+    spin = 0.02
+    load = [(400, 0.5, spin, 0.0)]  # to a strain of 0.2 (yield at 0.0036)
+    on, x = runtime(plastic(), NO_HG, drilling_tangent=True)
+    off, _ = runtime(plastic(), NO_HG, drilling_tangent=False)
+    a, b = drive(on, x, load), drive(off, x, load)
+    first_yield = next(i for i, r in enumerate(b) if r["epsp"] > 0.0)
+    assert first_yield > 3
+    for i in range(first_yield - 1):  # elastic start: the same springs
+        assert np.array_equal(a[i]["drill"], b[i]["drill"])
+    end_on, end_off = np.abs(a[-1]["drill"]).max(), np.abs(b[-1]["drill"]).max()
+    assert b[-1]["epsp"] > 0.1
+    # elastic spring: k * spin * t; tangent spring: ~ floor * (k * spin * dt) per step
+    assert end_off == pytest.approx(sum(r["k"] for r in b) * spin * DT, rel=1e-9)
+    assert end_on < 2.0 * TANGENT_FLOOR * b[-1]["k"] * spin * DT
+    # elastic unloading (the stretch reversed): the increments are elastic again
+    back = drive(on, _stretched(x, len(a)), [(5, -0.5, spin, 0.0)])
+    for r0, r1 in zip(back[1:], back[2:]):
+        assert r1["drill"] - r0["drill"] == pytest.approx(
+            np.full(4, r1["k"] * spin * DT), rel=1e-9)
+
+
+def _stretched(x: np.ndarray, n: int) -> np.ndarray:
+    """Node positions after ``n`` steps of stretch rate 0.5 (as in drive)."""
+    out = x.copy()
+    for _ in range(n):
+        out[:, 0] += DT * 0.5 * out[:, 0]
+    return out
+
+
+def test_springs_never_return_more_work_than_they_received():
+    # build a drilling moment elastically up to just below yield (strain 0.003; yield
+    # at 0.0037 in this plane-strain stretch), then unload it while the section flows
+    phases = [(6, 0.5, 0.2, 0.0), (300, 0.5, -0.2, 0.0), (50, -0.5, 0.2, 0.0),
+              (300, 0.5, -0.2, 0.0)]
+    rt, x = runtime(plastic(), NO_HG, drilling_tangent=True)
+    rows = drive(rt, x, phases)
+    assert max(r["stored"] for r in rows) > 0.0
+    assert max(r["epsp"] for r in rows) > 0.1
+    for r in rows:
+        assert r["work"] >= r["stored"] * (1.0 - 1e-3) - 1e-15
+
+
+def test_physical_hourglass_follows_the_tangent_and_stays_passive():
+    """IHQ 4 with the opt-in tangent: the w-mode hourglass force of a section in plastic
+    flow is at most ~TANGENT_FLOOR of the elastic one; the work done on the mode never
+    falls below zero (it holds a positive energy)."""
+    hg = HourglassDef(hgid=1, ihq=4, qm=0.1)
+    phases = [(400, 0.5, 0.0, 0.05)]
+    on, x = runtime(plastic(), hg, drilling=0.0, hourglass_tangent=True)
+    off, _ = runtime(plastic(), hg, drilling=0.0, hourglass_tangent=False)
+    a, b = drive(on, x, phases), drive(off, x, phases)
+    assert b[-1]["epsp"] > 0.1
+    assert abs(a[-1]["hgq"][2]) < 2.0 * TANGENT_FLOOR * abs(b[-1]["hgq"][2])
+    assert abs(b[-1]["hgq"][2]) > 0.0
+    work = [r["work"] for r in a]
+    assert min(work) >= 0.0
+    # unloaded in-plane (elastic again): the w-mode force grows at the elastic rate
+    el, x2 = runtime(elastic(E, NU, RHO), hg, drilling=0.0, hourglass_tangent=True)
+    ref, _ = runtime(elastic(E, NU, RHO), hg, drilling=0.0, hourglass_tangent=False)
+    ra, rb = drive(el, x2, phases[:1]), drive(ref, x2, phases[:1])
+    assert np.array_equal(ra[-1]["hgq"], rb[-1]["hgq"])
