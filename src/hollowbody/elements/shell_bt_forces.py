@@ -35,7 +35,16 @@ Belytschko-Tsay stiffness form with r = 1)::
   hourglass mode at the fraction QH of the critical damping of the mode under
   the reference stiffness, and the explicit viscous stability limit
   4 QH sqrt(k/m) dt < 2 holds for QH < 0.5 at the shell time step.
-* stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``).
+* stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``);
+  with ``kp[K_HG_TANGENT] > 0`` (opt-in, not an LS-DYNA form) the stored Q is
+  then multiplied by the section's tangent ratio (below).
+
+Tangent ratio of a step (per element): eta = W_actual / W_elastic, the
+section's incremental work sum_k w_k (s_new - s_old) . de over the elastic
+trial's, clipped to [TANGENT_FLOOR, 1] (1 when elastic or at rest); eta_m
+with the points' weights of N (membrane modes, drilling), eta_b with the
+weights z^2 of M (w and rotation modes). Scaling the stored value, not only
+the increment, keeps the springs passive.
 
 For warped elements the in-plane velocities of a rigid rotation about e1, e2
 (omega x z_I) are removed from the membrane hourglass rates (and the
@@ -45,7 +54,9 @@ Drilling stabilization (``kp[K_DRILL] > 0``): each node's angular velocity
 about e3 is tied to the element's in-plane spin
 ``0.5 (B1 . vy - B2 . vx)`` by an elastic moment ``m_I += k (theta_z,I -
 spin) dt``, ``k = factor * G t A``; the reaction is an in-plane couple on the
-element (power-consistent; zero for rigid motion).
+element (power-consistent; zero for rigid motion). With
+``kp[K_DRILL_TANGENT] > 0`` (the runtime's default) the moments are multiplied
+by eta_m after the increment: a yielded section releases its drilling spring.
 """
 
 from __future__ import annotations
@@ -68,6 +79,7 @@ from hollowbody.elements.shell_bt_kinematics import (
     bt_strain_rates,
     characteristic_length,
     dot3,
+    rotate_to_global,
 )
 from hollowbody.materials.plane_stress_plasticity import (
     FASTMATH,
@@ -100,38 +112,6 @@ K_THICK_UPDATE = 4  # 1: thickness follows the through-thickness strain
 K_DRILL_TANGENT = 5  # 1: drilling moment increments scaled by the element's tangent ratio
 K_HG_TANGENT = 6  # 1: stiffness-hourglass increments scaled by the tangent ratio (opt-in)
 N_CONTROLS = 7
-
-
-@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
-    """Global Voigt (xx yy zz xy yz zx) of a local tensor with s_zz = 0; R = [e1 e2 e3]."""
-    out0 = 0.0
-    out1 = 0.0
-    out2 = 0.0
-    out3 = 0.0
-    out4 = 0.0
-    out5 = 0.0
-    # s_g[p, q] = u_p . S u_q with u_p = (e1[p], e2[p], e3[p])
-    for p in range(3):
-        a0 = e1[p]
-        a1 = e2[p]
-        a2 = e3[p]
-        t0 = sxx * a0 + sxy * a1 + sxz * a2
-        t1 = sxy * a0 + syy * a1 + syz * a2
-        t2 = sxz * a0 + syz * a1
-        q = (p + 1) % 3
-        diag = t0 * a0 + t1 * a1 + t2 * a2
-        off = t0 * e1[q] + t1 * e2[q] + t2 * e3[q]
-        if p == 0:
-            out0 = diag
-            out3 = off
-        elif p == 1:
-            out1 = diag
-            out4 = off
-        else:
-            out2 = diag
-            out5 = off
-    return out0, out1, out2, out3, out4, out5
 
 
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
@@ -506,7 +486,7 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             nrm[i, 1] = e3[1]
             nrm[i, 2] = e3[2]
         it = 1.0 / t
-        s6 = _rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
+        s6 = rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
         for j in range(6):
             stress_out[i, j] = s6[j]
 
