@@ -115,10 +115,12 @@ N_CONTROLS = 7
 
 
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def tangent_ratio(w_actual, w_elastic):
+def tangent_ratio(w_actual, w_elastic, w_small):
     """Ratio of the actual to the elastic-trial incremental work of a section, in
-    [TANGENT_FLOOR, 1] (1 when the step did no elastic work: at rest, or elastic)."""
-    if w_elastic <= 1.0e-300:
+    [TANGENT_FLOOR, 1]; 1 when the elastic work is below ``w_small`` (no strain
+    increment beyond round-off, e.g. a rigid step: the ratio of two round-off
+    numbers means nothing)."""
+    if w_elastic <= w_small:
         return 1.0
     return min(1.0, max(TANGENT_FLOOR, w_actual / w_elastic))
 
@@ -126,6 +128,9 @@ def tangent_ratio(w_actual, w_elastic):
 #: Smallest tangent ratio (a fully yielded, perfectly plastic section still keeps
 #: this fraction of its elastic stabilization stiffness).
 TANGENT_FLOOR = 0.01
+#: Strain increment below which a step counts as no deformation for the tangent
+#: ratio (round-off of a rigid step is ~1e-16; a real step at 1 /s and 1 ns ~1e-12).
+TANGENT_STRAIN_SMALL = 1.0e-13
 
 
 #: The law module of an element loop built by :func:`make_shell_kernel` (each law's
@@ -311,8 +316,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             mxx += wk * z * q0
             myy += wk * z * q1
             mxy += wk * z * q2
-        eta_m = tangent_ratio(wa_m, we_m)
-        eta_b = tangent_ratio(wa_b, we_b)
+        e_small = e_mod * TANGENT_STRAIN_SMALL * TANGENT_STRAIN_SMALL * t
+        eta_m = tangent_ratio(wa_m, we_m, e_small)
+        eta_b = tangent_ratio(wa_b, we_b, e_small * h2 * h2)
         # transverse shear: elastic, uniform through the thickness, SHRF on the resultant
         to0 = tau[i, 0]
         to1 = tau[i, 1]
