@@ -125,6 +125,17 @@ def tangent_ratio(w_actual, w_elastic, w_small):
     return min(1.0, max(TANGENT_FLOOR, w_actual / w_elastic))
 
 
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def tangent_step(old, inc, eta):
+    """A stabilization force after one step: ``old + eta inc`` while it is loaded
+    (``old inc >= 0``), ``old + inc`` while it is unloaded (elastic unloading, as a
+    plastic section's). Passive: loading from m0 to m1 takes the work
+    (m1^2 - m0^2) / (2 eta k) >= the energy stored, (m1^2 - m0^2) / (2 k)."""
+    if old * inc >= 0.0:
+        return old + eta * inc
+    return old + inc
+
+
 #: Smallest tangent ratio (a fully yielded, perfectly plastic section still keeps
 #: this fraction of its elastic stabilization stiffness).
 TANGENT_FLOOR = 0.01
@@ -400,17 +411,18 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             o2 = hgq[i, 2]
             o3 = hgq[i, 3]
             o4 = hgq[i, 4]
-            hmx = o0 + qh * km * qmx * dt
-            hmy = o1 + qh * km * qmy * dt
-            hw = o2 + qh * kw * qw * dt
-            htx = o3 + qh * kr * qtx * dt
-            hty = o4 + qh * kr * qty * dt
-            if hg_tangent:  # the section's current tangent ratio (passive: see below)
-                hmx *= eta_m
-                hmy *= eta_m
-                hw *= eta_b
-                htx *= eta_b
-                hty *= eta_b
+            if hg_tangent:  # loading with the section's tangent, unloading elastic
+                hmx = tangent_step(o0, qh * km * qmx * dt, eta_m)
+                hmy = tangent_step(o1, qh * km * qmy * dt, eta_m)
+                hw = tangent_step(o2, qh * kw * qw * dt, eta_b)
+                htx = tangent_step(o3, qh * kr * qtx * dt, eta_b)
+                hty = tangent_step(o4, qh * kr * qty * dt, eta_b)
+            else:
+                hmx = o0 + qh * km * qmx * dt
+                hmy = o1 + qh * km * qmy * dt
+                hw = o2 + qh * kw * qw * dt
+                htx = o3 + qh * kr * qtx * dt
+                hty = o4 + qh * kr * qty * dt
             hgq[i, 0] = hmx
             hgq[i, 1] = hmy
             hgq[i, 2] = hw
@@ -438,15 +450,16 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             o1 = drill[i, 1]
             o2 = drill[i, 2]
             o3 = drill[i, 3]
-            dr0 = o0 + kd * r0
-            dr1 = o1 + kd * r1
-            dr2 = o2 + kd * r2_
-            dr3 = o3 + kd * r3
-            if drill_tangent:  # the section's current tangent ratio (passive: see below)
-                dr0 *= eta_m
-                dr1 *= eta_m
-                dr2 *= eta_m
-                dr3 *= eta_m
+            if drill_tangent:  # loading with the section's tangent, unloading elastic
+                dr0 = tangent_step(o0, kd * r0, eta_m)
+                dr1 = tangent_step(o1, kd * r1, eta_m)
+                dr2 = tangent_step(o2, kd * r2_, eta_m)
+                dr3 = tangent_step(o3, kd * r3, eta_m)
+            else:
+                dr0 = o0 + kd * r0
+                dr1 = o1 + kd * r1
+                dr2 = o2 + kd * r2_
+                dr3 = o3 + kd * r3
             drill[i, 0] = dr0
             drill[i, 1] = dr1
             drill[i, 2] = dr2

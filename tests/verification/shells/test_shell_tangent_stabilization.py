@@ -1,5 +1,6 @@
 """Stabilization stiffness that follows the section's tangent (drilling spring, and the
-opt-in physical form of the stiffness hourglass control).
+opt-in physical form of the stiffness hourglass control): loading with eta k,
+unloading with k.
 
 One 10 x 10 x 1 mm element is driven kinematically (nodal velocities and spins set,
 the kernel called once per step): an in-plane stretch (v_x = rate * x, v_y = 0)
@@ -11,14 +12,14 @@ is the section's actual / elastic-trial incremental work, in [TANGENT_FLOOR, 1].
 What must hold:
 - an elastic section: tangent ratio 1, the spring moments are bit-identical to the
   plain elastic springs (the setting changes nothing there);
-- a section in perfectly plastic flow: the spring moment is at most ~TANGENT_FLOOR
-  of what the elastic spring holds (the spring is never stiffer than the material
+- a section in perfectly plastic flow: the springs load with eta k, eta between
+  TANGENT_FLOOR and 2 TANGENT_FLOOR (the spring is never stiffer than the material
   it stands in for); back in the elastic range the increments are the elastic ones
   again (k r dt to 1e-9);
 - passivity: the work done on the springs never falls below the energy they hold
   (sum m^2 / 2k), also when a moment built up elastically is unloaded while the
-  section flows plastically (an increment-only tangent scaling gives back
-  m |dtheta| per step from a spring that no longer holds it, and fails this).
+  section flows plastically (unloading with eta k instead of k gives back
+  m |dtheta| per step from a spring that stores only m^2 / 2k, and fails this).
 """
 
 from __future__ import annotations
@@ -35,7 +36,9 @@ E, NU, RHO, SIGY = 70.0, 0.3, 2.7e-6, 0.25
 G = E / (2.0 * (1.0 + NU))
 DT = 1.0e-3  # ms
 DRILL = 0.1
-H = np.array([1.0, -1.0, 1.0, -1.0])  # hourglass pattern of the 4 nodes
+# hourglass pattern h = (1, -1, 1, -1) in element order; plate_mesh's single quad is
+# nodes (0, 1, 3, 2), so by node index:
+H = np.array([1.0, -1.0, -1.0, 1.0])
 
 
 def plastic() -> MaterialDef:
@@ -103,11 +106,20 @@ def test_plastic_flow_releases_the_drilling_spring_and_unloading_restores_it():
     assert first_yield > 3
     for i in range(first_yield - 1):  # elastic start: the same springs
         assert np.array_equal(a[i]["drill"], b[i]["drill"])
-    end_on, end_off = np.abs(a[-1]["drill"]).max(), np.abs(b[-1]["drill"]).max()
     assert b[-1]["epsp"] > 0.1
-    # elastic spring: k * spin * t; tangent spring: ~ floor * (k * spin * dt) per step
+    # elastic spring: sum of k * spin * dt; in plastic flow the tangent spring loads
+    # with eta k, eta ~ TANGENT_FLOOR (perfectly plastic)
+    end_off = np.abs(b[-1]["drill"]).max()
     assert end_off == pytest.approx(sum(r["k"] for r in b) * spin * DT, rel=1e-9)
-    assert end_on < 2.0 * TANGENT_FLOOR * b[-1]["k"] * spin * DT
+    # steady plastic flow (eps_p > 0.01: the stress has reached its plane-strain limit
+    # state; in the first steps after yield it still moves along the yield surface and
+    # the section does work, eta 0.35 -> 0.01 within 8 steps)
+    flowing = [i for i in range(1, len(a)) if a[i - 1]["epsp"] > 0.01]
+    assert len(flowing) > 300
+    for i in flowing:
+        inc = a[i]["drill"] - a[i - 1]["drill"]
+        assert np.all(inc >= TANGENT_FLOOR * a[i]["k"] * spin * DT * (1.0 - 1e-9))
+        assert np.all(inc < 2.0 * TANGENT_FLOOR * a[i]["k"] * spin * DT)
     # elastic unloading (the stretch reversed): the increments are elastic again
     back = drive(on, _stretched(x, len(a)), [(5, -0.5, spin, 0.0)])
     for r0, r1 in zip(back[1:], back[2:]):
@@ -146,8 +158,16 @@ def test_physical_hourglass_follows_the_tangent_and_stays_passive():
     off, _ = runtime(plastic(), hg, drilling=0.0, hourglass_tangent=False)
     a, b = drive(on, x, phases), drive(off, x, phases)
     assert b[-1]["epsp"] > 0.1
-    assert abs(a[-1]["hgq"][2]) < 2.0 * TANGENT_FLOOR * abs(b[-1]["hgq"][2])
-    assert abs(b[-1]["hgq"][2]) > 0.0
+    # steady plastic flow (eps_p > 0.01: the stress has reached its plane-strain limit
+    # state; in the first steps after yield it still moves along the yield surface and
+    # the section does work, eta 0.35 -> 0.01 within 8 steps)
+    flowing = [i for i in range(1, len(a)) if a[i - 1]["epsp"] > 0.01]
+    assert len(flowing) > 300
+    for i in flowing:  # the w-mode force loads with eta ~ TANGENT_FLOOR of the elastic rate
+        inc_on = a[i]["hgq"][2] - a[i - 1]["hgq"][2]
+        inc_off = b[i]["hgq"][2] - b[i - 1]["hgq"][2]
+        assert inc_off > 0.0
+        assert TANGENT_FLOOR * inc_off * (1.0 - 1e-6) <= inc_on < 2.0 * TANGENT_FLOOR * inc_off
     work = [r["work"] for r in a]
     assert min(work) >= 0.0
     # unloaded in-plane (elastic again): the w-mode force grows at the elastic rate
@@ -210,3 +230,54 @@ def test_rigid_rotation_leaves_the_tangent_scaled_forces_alone(tangent):
     assert np.abs(d.rt.drill - drill).max() < 2e-5 * np.abs(drill).max()
     assert d.rt.hourglass_energy == pytest.approx(ehg, rel=2e-5)
     assert np.abs(d.f.sum(axis=0)).max() < 1e-9 * np.abs(d.f).max()
+
+
+def test_elastic_plastic_strip_rolls_stably_to_a_uniform_curvature():
+    """The strip of test_shell_roll.py (20 x 1 shells, 100 x 10 x 1 mm, nu = 0) of a
+    perfectly plastic MAT_003 (sigma_y 1.2 GPa), rolled by an end moment M = 1.22 M_y:
+    the outer Gauss points flow, the inner three stay elastic, so the drilling springs
+    load with eta ~0.3 k. The strip must stay stable (a per-step decay of the spring
+    moments, tried first, let the drilling rotations run away here: tip 8.8 mm off the
+    strip's plane, "hourglass" energy 4.5 x the internal energy) and bend to a uniform
+    curvature: every node on the circle through the tip, tangent at the root, within
+    0.2 % L (measured 0.012 %). Its radius is the one of the discrete section's
+    moment-curvature relation (sum of w_k z_k clip(E z_k kappa, +-sigma_y) over the
+    5 Gauss points = M / b) within 4 % (measured 2.5 % larger: the strip carries M at a
+    slightly smaller curvature; the same with the plain elastic spring)."""
+    from shell_driver import ShellDriver
+
+    from hollowbody.elements.shell_thickness_rules import through_thickness_rule
+
+    e_mod, rho, sigy = 210.0, 7.85e-6, 1.2
+    length, width, t = 100.0, 10.0, 1.0
+    kappa = np.pi / (2.0 * length)  # a quarter roll
+    zeta, wts = through_thickness_rule(5.0, 0.0)
+    z = 0.5 * t * zeta
+    moment = width * float(np.sum(0.5 * t * wts * z * np.clip(e_mod * z * kappa, -sigy, sigy)))
+    assert 1.1 < moment / (sigy * width * t ** 2 / 6.0) < 1.3  # beyond first yield
+    mat = MaterialDef(mid=1, kind="plastic003", density=rho,
+                      params={"E": e_mod, "PR": 0.0, "SIGY": sigy, "ETAN": 0.0, "BETA": 1.0})
+    x, conn = plate_mesh(length, width, 20, 1)
+    d = ShellDriver(x, conn, mat, section(5), thickness=t, damping=1.0)
+    assert d.rt.drilling_tangent
+    root = np.isclose(x[:, 0], 0.0)
+    tip = np.isclose(x[:, 0], length)
+    d.fix_v[root] = True
+    d.fix_w[root] = True
+
+    def load(t_now, drv):
+        m = np.zeros_like(drv.x)
+        m[tip, 1] = -0.5 * moment * min(t_now / 30.0, 1.0)
+        return np.zeros_like(drv.x), m
+
+    d.load = load
+    d.run(60.0)
+    assert d.rt.plastic_strain.max() > 5e-4
+    assert d.kinetic_energy() < 1e-6 * d.rt.internal_energy
+    assert d.rt.hourglass_energy < 1e-3 * d.rt.internal_energy
+    assert np.abs(d.x[:, 1] - x[:, 1]).max() < 1e-6  # no drift out of the strip's plane
+    tx = d.x[tip].mean(axis=0)
+    r_fit = (tx[0] ** 2 + tx[2] ** 2) / (2.0 * tx[2])
+    r_nodes = np.hypot(d.x[:, 0], d.x[:, 2] - r_fit)
+    assert np.abs(r_nodes - r_fit).max() < 0.002 * length
+    assert r_fit == pytest.approx(1.0 / kappa, rel=0.04)
