@@ -37,14 +37,16 @@ Belytschko-Tsay stiffness form with r = 1)::
   4 QH sqrt(k/m) dt < 2 holds for QH < 0.5 at the shell time step.
 * stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``);
   with ``kp[K_HG_TANGENT] > 0`` (opt-in, not an LS-DYNA form) the stored Q is
-  then multiplied by the section's tangent ratio (below).
+  then multiplied by the section's tangent ratio eta (below): in plastic flow
+  the hourglass forces relax to ~eta / (1 - eta) of one step's elastic
+  increment (passive; it depends on dt, so it is an experimental setting).
 
 Tangent ratio of a step (per element): eta = W_actual / W_elastic, the
 section's incremental work sum_k w_k (s_new - s_old) . de over the elastic
 trial's, clipped to [TANGENT_FLOOR, 1] (1 when elastic or at rest); eta_m
 with the points' weights of N (membrane modes, drilling), eta_b with the
-weights z^2 of M (w and rotation modes). Scaling the stored value, not only
-the increment, keeps the springs passive.
+weights z^2 of M (w and rotation modes). Unloading with the elastic stiffness
+keeps the springs passive.
 
 For warped elements the in-plane velocities of a rigid rotation about e1, e2
 (omega x z_I) are removed from the membrane hourglass rates (and the
@@ -55,8 +57,8 @@ about e3 is tied to the element's in-plane spin
 ``0.5 (B1 . vy - B2 . vx)`` by an elastic moment ``m_I += k (theta_z,I -
 spin) dt``, ``k = factor * G t A``; the reaction is an in-plane couple on the
 element (power-consistent; zero for rigid motion). With
-``kp[K_DRILL_TANGENT] > 0`` (the runtime's default) the moments are multiplied
-by eta_m after the increment: a yielded section releases its drilling spring.
+``kp[K_DRILL_TANGENT] > 0`` (the runtime's default) the springs load with
+eta_m k and unload with k: a yielded section barely loads its drilling spring.
 """
 
 from __future__ import annotations
@@ -411,18 +413,17 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             o2 = hgq[i, 2]
             o3 = hgq[i, 3]
             o4 = hgq[i, 4]
-            if hg_tangent:  # loading with the section's tangent, unloading elastic
-                hmx = tangent_step(o0, qh * km * qmx * dt, eta_m)
-                hmy = tangent_step(o1, qh * km * qmy * dt, eta_m)
-                hw = tangent_step(o2, qh * kw * qw * dt, eta_b)
-                htx = tangent_step(o3, qh * kr * qtx * dt, eta_b)
-                hty = tangent_step(o4, qh * kr * qty * dt, eta_b)
-            else:
-                hmx = o0 + qh * km * qmx * dt
-                hmy = o1 + qh * km * qmy * dt
-                hw = o2 + qh * kw * qw * dt
-                htx = o3 + qh * kr * qtx * dt
-                hty = o4 + qh * kr * qty * dt
+            hmx = o0 + qh * km * qmx * dt
+            hmy = o1 + qh * km * qmy * dt
+            hw = o2 + qh * kw * qw * dt
+            htx = o3 + qh * kr * qtx * dt
+            hty = o4 + qh * kr * qty * dt
+            if hg_tangent:  # opt-in: the stored forces relax with the tangent ratio
+                hmx *= eta_m
+                hmy *= eta_m
+                hw *= eta_b
+                htx *= eta_b
+                hty *= eta_b
             hgq[i, 0] = hmx
             hgq[i, 1] = hmy
             hgq[i, 2] = hw

@@ -27,11 +27,11 @@ stiffness in the Belytschko-Tsay shell; a small elastic drilling stiffness
 energy is reported with the hourglass energy). Without it a bent shell's
 moments can drive the free drilling rotations (a rolled-up strip flutters);
 ``drilling=0`` gives LS-DYNA's behaviour. ``drilling_tangent`` (default True)
-multiplies the spring moments by the section's tangent ratio each step (a
-yielded wall releases the spring that would otherwise hold a corner between
-two walls like a stiff hinge); ``hourglass_tangent`` (default False, opt-in,
-not an LS-DYNA form) does the same for the stiffness hourglass forces (IHQ 4,
-5). See docs/shells.md.
+loads the springs with the section's tangent ratio times their stiffness and
+unloads them elastically (a yielded wall no longer holds a corner between two
+walls like a stiff hinge); ``hourglass_tangent`` (default False, opt-in, not an
+LS-DYNA form) does the same for the stiffness hourglass forces (IHQ 4, 5). See
+docs/shells.md.
 """
 
 from __future__ import annotations

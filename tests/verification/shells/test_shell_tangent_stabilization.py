@@ -149,9 +149,10 @@ def test_springs_never_return_more_work_than_they_received():
 
 
 def test_physical_hourglass_follows_the_tangent_and_stays_passive():
-    """IHQ 4 with the opt-in tangent: the w-mode hourglass force of a section in plastic
-    flow is at most ~TANGENT_FLOOR of the elastic one; the work done on the mode never
-    falls below zero (it holds a positive energy)."""
+    """IHQ 4 with the opt-in tangent (the stored forces multiplied by eta each step):
+    in steady plastic flow the w-mode hourglass force is eta / (1 - eta) of one step's
+    elastic increment, eta ~ TANGENT_FLOOR; the work done on the mode never falls
+    below zero; an elastic section gets the plain elastic forces bit for bit."""
     hg = HourglassDef(hgid=1, ihq=4, qm=0.1)
     phases = [(400, 0.5, 0.0, 0.05)]
     on, x = runtime(plastic(), hg, drilling=0.0, hourglass_tangent=True)
@@ -163,11 +164,10 @@ def test_physical_hourglass_follows_the_tangent_and_stays_passive():
     # the section does work, eta 0.35 -> 0.01 within 8 steps)
     flowing = [i for i in range(1, len(a)) if a[i - 1]["epsp"] > 0.01]
     assert len(flowing) > 300
-    for i in flowing:  # the w-mode force loads with eta ~ TANGENT_FLOOR of the elastic rate
-        inc_on = a[i]["hgq"][2] - a[i - 1]["hgq"][2]
+    for i in flowing:  # the w-mode force relaxes to eta / (1 - eta) of a step's increment
         inc_off = b[i]["hgq"][2] - b[i - 1]["hgq"][2]
         assert inc_off > 0.0
-        assert TANGENT_FLOOR * inc_off * (1.0 - 1e-6) <= inc_on < 2.0 * TANGENT_FLOOR * inc_off
+        assert TANGENT_FLOOR * inc_off <= a[i]["hgq"][2] < 2.0 * TANGENT_FLOOR * inc_off
     work = [r["work"] for r in a]
     assert min(work) >= 0.0
     # unloaded in-plane (elastic again): the w-mode force grows at the elastic rate
