@@ -57,7 +57,7 @@ about e3 is tied to the element's in-plane spin
 ``0.5 (B1 . vy - B2 . vx)`` by an elastic moment ``m_I += k (theta_z,I -
 spin) dt``, ``k = factor * G t A``; the reaction is an in-plane couple on the
 element (power-consistent; zero for rigid motion). With
-``kp[K_DRILL_TANGENT] > 0`` (the runtime's default) the springs load with
+``kp[K_DRILL_TANGENT] > 0`` (opt-in) the springs load with
 eta_m k and unload with k: a yielded section barely loads its drilling spring.
 """
 
@@ -139,7 +139,7 @@ def tangent_step(old, inc, eta):
 
 
 #: Smallest tangent ratio (a fully yielded, perfectly plastic section still keeps
-#: this fraction of its elastic stabilization stiffness).
+#: this fraction of its elastic stabilization stiffness; docs/shells.md).
 TANGENT_FLOOR = 0.01
 #: Strain increment below which a step counts as no deformation for the tangent
 #: ratio (round-off of a rigid step is ~1e-16; a real step at 1 /s and 1 ns ~1e-12).

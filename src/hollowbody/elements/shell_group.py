@@ -26,12 +26,13 @@ stiffness in the Belytschko-Tsay shell; a small elastic drilling stiffness
 ``drilling * G t A`` per node ties them to the element's in-plane spin (its
 energy is reported with the hourglass energy). Without it a bent shell's
 moments can drive the free drilling rotations (a rolled-up strip flutters);
-``drilling=0`` gives LS-DYNA's behaviour. ``drilling_tangent`` (default True)
-loads the springs with the section's tangent ratio times their stiffness and
-unloads them elastically (a yielded wall no longer holds a corner between two
-walls like a stiff hinge); ``hourglass_tangent`` (default False, opt-in, not an
-LS-DYNA form) does the same for the stiffness hourglass forces (IHQ 4, 5). See
-docs/shells.md.
+``drilling=0`` gives LS-DYNA's behaviour. ``drilling_tangent`` (default
+False, opt-in; in a run ``Model.controls.shell_tangent_drilling``) loads the
+springs with the section's tangent ratio times their stiffness and unloads
+them elastically (a yielded wall no longer holds a corner between two walls
+like a stiff hinge); ``hourglass_tangent`` (default False, experimental, not
+an LS-DYNA form) relaxes the stiffness hourglass forces (IHQ 4, 5) with the
+tangent ratio. See docs/shells.md.
 """
 
 from __future__ import annotations
@@ -103,7 +104,7 @@ class ShellGroupRuntime:
     def __init__(self, group: ShellGroup, material: MaterialDef, section: SectionDef,
                  hourglass: HourglassDef, curves: dict[int, Curve], node_x0: np.ndarray,
                  *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING,
-                 drilling_tangent: bool = True, hourglass_tangent: bool = False) -> None:
+                 drilling_tangent: bool = False, hourglass_tangent: bool = False) -> None:
         self.pid = int(group.pid)
         self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
         self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)

