@@ -35,7 +35,18 @@ Belytschko-Tsay stiffness form with r = 1)::
   hourglass mode at the fraction QH of the critical damping of the mode under
   the reference stiffness, and the explicit viscous stability limit
   4 QH sqrt(k/m) dt < 2 holds for QH < 0.5 at the shell time step.
-* stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``).
+* stiffness (IHQ 4, 5): ``Q += QH k q dt`` (stored co-rotationally in ``hgq``);
+  with ``kp[K_HG_TANGENT] > 0`` (opt-in, not an LS-DYNA form) the stored Q is
+  then multiplied by the section's tangent ratio eta (below): in plastic flow
+  the hourglass forces relax to ~eta / (1 - eta) of one step's elastic
+  increment (passive; it depends on dt, so it is an experimental setting).
+
+Tangent ratio of a step (per element): eta = W_actual / W_elastic, the
+section's incremental work sum_k w_k (s_new - s_old) . de over the elastic
+trial's, clipped to [TANGENT_FLOOR, 1] (1 when elastic or at rest); eta_m
+with the points' weights of N (membrane modes, drilling), eta_b with the
+weights z^2 of M (w and rotation modes). Unloading with the elastic stiffness
+keeps the springs passive.
 
 For warped elements the in-plane velocities of a rigid rotation about e1, e2
 (omega x z_I) are removed from the membrane hourglass rates (and the
@@ -45,7 +56,9 @@ Drilling stabilization (``kp[K_DRILL] > 0``): each node's angular velocity
 about e3 is tied to the element's in-plane spin
 ``0.5 (B1 . vy - B2 . vx)`` by an elastic moment ``m_I += k (theta_z,I -
 spin) dt``, ``k = factor * G t A``; the reaction is an in-plane couple on the
-element (power-consistent; zero for rigid motion).
+element (power-consistent; zero for rigid motion). With
+``kp[K_DRILL_TANGENT] > 0`` (opt-in) the springs load with
+eta_m k and unload with k: a yielded section barely loads its drilling spring.
 """
 
 from __future__ import annotations
@@ -68,6 +81,7 @@ from hollowbody.elements.shell_bt_kinematics import (
     bt_strain_rates,
     characteristic_length,
     dot3,
+    rotate_to_global,
 )
 from hollowbody.materials.plane_stress_plasticity import (
     FASTMATH,
@@ -97,39 +111,39 @@ K_HG_KIND = 1  # HG_NONE, HG_VISCOUS or HG_STIFFNESS
 K_QH = 2  # hourglass coefficient
 K_DRILL = 3  # drilling stiffness factor (k = factor * G t A per node)
 K_THICK_UPDATE = 4  # 1: thickness follows the through-thickness strain
-N_CONTROLS = 5
+K_DRILL_TANGENT = 5  # 1: drilling moment increments scaled by the element's tangent ratio
+K_HG_TANGENT = 6  # 1: stiffness-hourglass increments scaled by the tangent ratio (opt-in)
+N_CONTROLS = 7
 
 
 @njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
-def _rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
-    """Global Voigt (xx yy zz xy yz zx) of a local tensor with s_zz = 0; R = [e1 e2 e3]."""
-    out0 = 0.0
-    out1 = 0.0
-    out2 = 0.0
-    out3 = 0.0
-    out4 = 0.0
-    out5 = 0.0
-    # s_g[p, q] = u_p . S u_q with u_p = (e1[p], e2[p], e3[p])
-    for p in range(3):
-        a0 = e1[p]
-        a1 = e2[p]
-        a2 = e3[p]
-        t0 = sxx * a0 + sxy * a1 + sxz * a2
-        t1 = sxy * a0 + syy * a1 + syz * a2
-        t2 = sxz * a0 + syz * a1
-        q = (p + 1) % 3
-        diag = t0 * a0 + t1 * a1 + t2 * a2
-        off = t0 * e1[q] + t1 * e2[q] + t2 * e3[q]
-        if p == 0:
-            out0 = diag
-            out3 = off
-        elif p == 1:
-            out1 = diag
-            out4 = off
-        else:
-            out2 = diag
-            out5 = off
-    return out0, out1, out2, out3, out4, out5
+def tangent_ratio(w_actual, w_elastic, w_small):
+    """Ratio of the actual to the elastic-trial incremental work of a section, in
+    [TANGENT_FLOOR, 1]; 1 when the elastic work is below ``w_small`` (no strain
+    increment beyond round-off, e.g. a rigid step: the ratio of two round-off
+    numbers means nothing)."""
+    if w_elastic <= w_small:
+        return 1.0
+    return min(1.0, max(TANGENT_FLOOR, w_actual / w_elastic))
+
+
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def tangent_step(old, inc, eta):
+    """A stabilization force after one step: ``old + eta inc`` while it is loaded
+    (``old inc >= 0``), ``old + inc`` while it is unloaded (elastic unloading, as a
+    plastic section's). Passive: loading from m0 to m1 takes the work
+    (m1^2 - m0^2) / (2 eta k) >= the energy stored, (m1^2 - m0^2) / (2 k)."""
+    if old * inc >= 0.0:
+        return old + eta * inc
+    return old + inc
+
+
+#: Smallest tangent ratio (a fully yielded, perfectly plastic section still keeps
+#: this fraction of its elastic stabilization stiffness; docs/shells.md).
+TANGENT_FLOOR = 0.01
+#: Strain increment below which a step counts as no deformation for the tangent
+#: ratio (round-off of a rigid step is ~1e-16; a real step at 1 /s and 1 ns ~1e-12).
+TANGENT_STRAIN_SMALL = 1.0e-13
 
 
 #: The law module of an element loop built by :func:`make_shell_kernel` (each law's
@@ -183,6 +197,8 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     qh = kp[K_QH]
     drill_k = kp[K_DRILL]
     update_thickness = kp[K_THICK_UPDATE] > 0.0
+    drill_tangent = kp[K_DRILL_TANGENT] > 0.0
+    hg_tangent = kp[K_HG_TANGENT] > 0.0
     kind = _law.KIND
     e_mod = mp[P_E]
     nu = mp[P_NU]
@@ -240,6 +256,12 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
         dzz = 0.0
         pm = 0.0
         nfail = 0
+        # tangent ratios: actual / elastic-trial incremental work, uniform (membrane) and
+        # z^2-weighted (bending) over the points
+        wa_m = 0.0
+        we_m = 0.0
+        wa_b = 0.0
+        we_b = 0.0
         for k in range(nip):
             z = zeta[k] * h2
             wk = wts[k] * h2
@@ -272,6 +294,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                 epn = epsp[i, k]
                 # elastic trial and yield check here; the return mapping only when needed
                 q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
+                dwe = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                we_m += wk * dwe
+                we_b += wk * z * z * dwe
                 x0 = q0 - a0
                 x1 = q1 - a1
                 x2 = q2 - a2
@@ -286,6 +311,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                     back[i, k, 1] = a1
                     back[i, k, 2] = a2
                 epsp[i, k] = epn
+                dwa = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                wa_m += wk * dwa
+                wa_b += wk * z * z * dwa
                 pm = max(pm, epn)
                 if fail > 0.0 and epn >= fail:
                     pfail[i, k] = 1
@@ -301,6 +329,9 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             mxx += wk * z * q0
             myy += wk * z * q1
             mxy += wk * z * q2
+        e_small = e_mod * TANGENT_STRAIN_SMALL * TANGENT_STRAIN_SMALL * t
+        eta_m = tangent_ratio(wa_m, we_m, e_small)
+        eta_b = tangent_ratio(wa_b, we_b, e_small * h2 * h2)
         # transverse shear: elastic, uniform through the thickness, SHRF on the resultant
         to0 = tau[i, 0]
         to1 = tau[i, 1]
@@ -387,6 +418,12 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             hw = o2 + qh * kw * qw * dt
             htx = o3 + qh * kr * qtx * dt
             hty = o4 + qh * kr * qty * dt
+            if hg_tangent:  # opt-in: the stored forces relax with the tangent ratio
+                hmx *= eta_m
+                hmy *= eta_m
+                hw *= eta_b
+                htx *= eta_b
+                hty *= eta_b
             hgq[i, 0] = hmx
             hgq[i, 1] = hmy
             hgq[i, 2] = hw
@@ -414,10 +451,16 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             o1 = drill[i, 1]
             o2 = drill[i, 2]
             o3 = drill[i, 3]
-            dr0 = o0 + kd * r0
-            dr1 = o1 + kd * r1
-            dr2 = o2 + kd * r2_
-            dr3 = o3 + kd * r3
+            if drill_tangent:  # loading with the section's tangent, unloading elastic
+                dr0 = tangent_step(o0, kd * r0, eta_m)
+                dr1 = tangent_step(o1, kd * r1, eta_m)
+                dr2 = tangent_step(o2, kd * r2_, eta_m)
+                dr3 = tangent_step(o3, kd * r3, eta_m)
+            else:
+                dr0 = o0 + kd * r0
+                dr1 = o1 + kd * r1
+                dr2 = o2 + kd * r2_
+                dr3 = o3 + kd * r3
             drill[i, 0] = dr0
             drill[i, 1] = dr1
             drill[i, 2] = dr2
@@ -463,7 +506,7 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             nrm[i, 1] = e3[1]
             nrm[i, 2] = e3[2]
         it = 1.0 / t
-        s6 = _rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
+        s6 = rotate_to_global(e1, e2, e3, nxx * it, nyy * it, nxy * it, qxz * it, qyz * it)
         for j in range(6):
             stress_out[i, j] = s6[j]
 

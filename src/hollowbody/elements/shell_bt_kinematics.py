@@ -30,7 +30,8 @@ velocity)::
     g_xz = B1 vz + (1/4) sum thy       g_yz = B2 vz - (1/4) sum thx
 
 (g: engineering shear rates; sums over the 4 nodes). Drilling rotations
-(theta about e3) do not enter.
+(theta about e3) do not enter. :func:`rotate_to_global` turns a local tensor
+(s_zz = 0) into global Voigt components with the frame.
 """
 
 from __future__ import annotations
@@ -150,3 +151,35 @@ def bt_strain_rates(b1, b2, vx, vy, vz, tx, ty):
     gyz = (b2[0] * vz[0] + b2[1] * vz[1] + b2[2] * vz[2] + b2[3] * vz[3]
            - 0.25 * (tx[0] + tx[1] + tx[2] + tx[3]))
     return dxx, dyy, gxy, kxx, kyy, kxy, gxz, gyz
+
+
+@njit(cache=True, error_model="numpy", fastmath=FASTMATH, inline="always")
+def rotate_to_global(e1, e2, e3, sxx, syy, sxy, sxz, syz):
+    """Global Voigt (xx yy zz xy yz zx) of a local tensor with s_zz = 0; R = [e1 e2 e3]."""
+    out0 = 0.0
+    out1 = 0.0
+    out2 = 0.0
+    out3 = 0.0
+    out4 = 0.0
+    out5 = 0.0
+    # s_g[p, q] = u_p . S u_q with u_p = (e1[p], e2[p], e3[p])
+    for p in range(3):
+        a0 = e1[p]
+        a1 = e2[p]
+        a2 = e3[p]
+        t0 = sxx * a0 + sxy * a1 + sxz * a2
+        t1 = sxy * a0 + syy * a1 + syz * a2
+        t2 = sxz * a0 + syz * a1
+        q = (p + 1) % 3
+        diag = t0 * a0 + t1 * a1 + t2 * a2
+        off = t0 * e1[q] + t1 * e2[q] + t2 * e3[q]
+        if p == 0:
+            out0 = diag
+            out3 = off
+        elif p == 1:
+            out1 = diag
+            out4 = off
+        else:
+            out2 = diag
+            out5 = off
+    return out0, out1, out2, out3, out4, out5

@@ -26,7 +26,13 @@ stiffness in the Belytschko-Tsay shell; a small elastic drilling stiffness
 ``drilling * G t A`` per node ties them to the element's in-plane spin (its
 energy is reported with the hourglass energy). Without it a bent shell's
 moments can drive the free drilling rotations (a rolled-up strip flutters);
-``drilling=0`` gives LS-DYNA's behaviour.
+``drilling=0`` gives LS-DYNA's behaviour. ``drilling_tangent`` (default
+False, opt-in; in a run ``Model.controls.shell_tangent_drilling``) loads the
+springs with the section's tangent ratio times their stiffness and unloads
+them elastically (a yielded wall no longer holds a corner between two walls
+like a stiff hinge); ``hourglass_tangent`` (default False, experimental, not
+an LS-DYNA form) relaxes the stiffness hourglass forces (IHQ 4, 5) with the
+tangent ratio. See docs/shells.md.
 """
 
 from __future__ import annotations
@@ -38,7 +44,9 @@ from hollowbody.elements.shell_bt_forces import (
     HG_STIFFNESS,
     HG_VISCOUS,
     K_DRILL,
+    K_DRILL_TANGENT,
     K_HG_KIND,
+    K_HG_TANGENT,
     K_QH,
     K_SHRF,
     K_THICK_UPDATE,
@@ -95,7 +103,8 @@ class ShellGroupRuntime:
 
     def __init__(self, group: ShellGroup, material: MaterialDef, section: SectionDef,
                  hourglass: HourglassDef, curves: dict[int, Curve], node_x0: np.ndarray,
-                 *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING) -> None:
+                 *, thickness_update: bool = False, drilling: float = DEFAULT_DRILLING,
+                 drilling_tangent: bool = False, hourglass_tangent: bool = False) -> None:
         self.pid = int(group.pid)
         self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
         self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)
@@ -182,6 +191,10 @@ class ShellGroupRuntime:
         self._controls[K_QH] = self.qh
         self._controls[K_DRILL] = self.drilling
         self._controls[K_THICK_UPDATE] = 1.0 if self.thickness_update else 0.0
+        self.drilling_tangent = bool(drilling_tangent)
+        self.hourglass_tangent = bool(hourglass_tangent)
+        self._controls[K_DRILL_TANGENT] = 1.0 if self.drilling_tangent else 0.0
+        self._controls[K_HG_TANGENT] = 1.0 if self.hourglass_tangent else 0.0
         self._wzero = np.zeros((0, 3))
         self._mzero = np.zeros((1, 3))
 

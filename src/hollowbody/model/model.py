@@ -295,6 +295,9 @@ class Controls:
     slsfac: float = 0.1
     contact_sort_interval: int = 100  # cycles between bucket sorts (NSBCS)
     tiedprj: int = 0  # TIEDPRJ: 0 tied slave nodes moved onto the surface, 1 kept where they are
+    #: not an LS-DYNA card (set through the API; docs/shells.md): the shells' drilling
+    #: springs load with the section's tangent ratio (opt-in)
+    shell_tangent_drilling: bool = False
 
 
 @dataclass

@@ -125,7 +125,9 @@ def assemble(model: Model) -> Assembly:
         asm.elements.append(ShellGroupRuntime(g, mat, model.sections[model.parts[g.pid].secid],
                                               model.hourglass_of(g.pid), model.curves,
                                               x0,
-                                              thickness_update=model.controls.istupd == 1))
+                                              thickness_update=model.controls.istupd == 1,
+                                              drilling_tangent=(
+                                                  model.controls.shell_tangent_drilling)))
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:
