@@ -14,7 +14,12 @@ listed as not run). Prints one table row per case as it ends:
 and writes ``results.json`` (one object per case) into ``--out``.
 
     NUMBA_NUM_THREADS=1 python benchmarks/bench_crush.py [--budget 1500] [--out DIR]
-        [--only NAME-SUBSTRING ...] [--speed 10]
+        [--only NAME-SUBSTRING ...] [--speed 10] [--tangent-drilling]
+
+``--tangent-drilling`` runs the cases with the shells' opt-in tangent drilling
+spring (``Model.controls.shell_tangent_drilling``, docs/shells.md; no deck card,
+so the deck is read into a model, the control set, and the model run); the
+cases' run folders and rows then carry the suffix ``-tdrill``.
 
 See docs/crush.md.
 """
@@ -29,7 +34,8 @@ import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
-from hollowbody.scenarios.crush import CrushCase, CrushResult, run_crush
+from hollowbody.io.keyword import write_deck
+from hollowbody.scenarios.crush import CrushCase, CrushResult, crush_deck, read_crush, run_crush
 from hollowbody.scenarios.crush_theory import circular_half_fold, square_half_fold
 
 
@@ -77,20 +83,41 @@ HEADER = ("| case | C/t, D/t | mesh | analytical [kN] | ours [kN] | ratio | H ou
           "| HG/IE | contact | E ratio | cycles | dt0 / dt_min [us] | wall [s] |")
 
 
-def row(r: CrushResult) -> str:
-    """One markdown table row of a finished case."""
+def run_tangent_drilling(case: CrushCase, out_dir: str | Path) -> CrushResult:
+    """:func:`run_crush` with the shells' tangent drilling spring switched on (one
+    thread, no VTK states): the deck is written into ``out_dir``, read into a model,
+    ``Model.controls.shell_tangent_drilling`` set, and the model run there."""
+    from hollowbody.api import load_model, run_model
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    deck, setup = crush_deck(case)
+    path = out / "crush.k"
+    write_deck(deck, path)
+    t0 = time.perf_counter()
+    model = load_model(path)
+    model.controls.shell_tangent_drilling = True
+    run_model(model, out, vtk=False, label=path.name, overwrite=True, inputs=(path,), threads=1)
+    res = read_crush(out, case, setup)
+    res.wall_seconds = time.perf_counter() - t0
+    return res
+
+
+def row(r: CrushResult, suffix: str = "") -> str:
+    """One markdown table row of a finished case (``suffix`` appended to its name)."""
     c, s, ref = r.case, r.setup, r.reference
     mesh = (f"{s.per_side}/side x {s.nz}" if c.shape == "square" else f"{s.around} x {s.nz}")
     mesh += f" ({c.per_half_fold:g}/H, {s.elem:.1f} mm)"
-    return (f"| {c.name} | {c.slenderness:.0f} | {mesh} | {ref.low:.1f}-{ref.high:.1f} "
+    return (f"| {c.name}{suffix} | {c.slenderness:.0f} | {mesh} | {ref.low:.1f}-{ref.high:.1f} "
             f"| {r.mean_force:.1f} | {r.ratio:.2f} | {r.half_fold:.1f} / {ref.half_fold:.1f} "
             f"| {r.hourglass_share:.1%} | {r.contact_share:.1%} | {r.energy_ratio:.3f} "
             f"| {r.cycles} | {1e3 * r.dt0:.3f} / {1e3 * r.dt_min:.3f} | {r.wall_seconds:.0f} |")
 
 
-def record(r: CrushResult) -> dict:
-    """JSON-able summary of a case."""
-    return {"case": asdict(r.case), "name": r.case.name, "status": r.status,
+def record(r: CrushResult, suffix: str = "") -> dict:
+    """JSON-able summary of a case (``suffix`` appended to its name)."""
+    return {"case": asdict(r.case), "name": r.case.name + suffix, "status": r.status,
+            "tangent_drilling": suffix == "-tdrill",
             "mesh": asdict(r.setup), "forms_kN": r.reference.forms,
             "half_fold_closed_form": r.reference.half_fold, "window_mm": list(r.window),
             "mean_force_kN": r.mean_force, "ratio_to_high": r.ratio,
@@ -108,6 +135,8 @@ def main() -> None:
     ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
     ap.add_argument("--only", nargs="*", default=None, help="run cases whose name has one of these")
     ap.add_argument("--speed", type=float, default=10.0, help="plate speed, mm/ms")
+    ap.add_argument("--tangent-drilling", action="store_true",
+                    help="shells with the opt-in tangent drilling spring (docs/shells.md)")
     a = ap.parse_args()
     out = Path(a.out) if a.out else Path(tempfile.mkdtemp(prefix="bench_crush_"))
     todo = cases(a.speed)
@@ -117,13 +146,17 @@ def main() -> None:
     print("|" + "---|" * 13, flush=True)
     t0 = time.perf_counter()
     results, skipped = [], []
+    suffix = "-tdrill" if a.tangent_drilling else ""
     for c in todo:
         if time.perf_counter() - t0 > a.budget:
             skipped.append(c.name)
             continue
-        r = run_crush(replace(c), out / c.name, threads=1)
-        results.append(record(r))
-        print(row(r) + ("" if r.status == "normal termination" else f" {r.status}"),
+        if a.tangent_drilling:
+            r = run_tangent_drilling(replace(c), out / (c.name + suffix))
+        else:
+            r = run_crush(replace(c), out / c.name, threads=1)
+        results.append(record(r, suffix))
+        print(row(r, suffix) + ("" if r.status == "normal termination" else f" {r.status}"),
               flush=True)
         (out / "results.json").write_text(json.dumps(results, indent=1))
     for name in skipped:
