@@ -34,8 +34,7 @@ import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
-from hollowbody.io.keyword import write_deck
-from hollowbody.scenarios.crush import CrushCase, CrushResult, crush_deck, read_crush, run_crush
+from hollowbody.scenarios.crush import CrushCase, CrushResult, run_crush
 from hollowbody.scenarios.crush_theory import circular_half_fold, square_half_fold
 
 
@@ -81,26 +80,6 @@ def cases(speed: float = 10.0) -> list[CrushCase]:
 
 HEADER = ("| case | C/t, D/t | mesh | analytical [kN] | ours [kN] | ratio | H ours / cf [mm] "
           "| HG/IE | contact | E ratio | cycles | dt0 / dt_min [us] | wall [s] |")
-
-
-def run_tangent_drilling(case: CrushCase, out_dir: str | Path) -> CrushResult:
-    """:func:`run_crush` with the shells' tangent drilling spring switched on (one
-    thread, no VTK states): the deck is written into ``out_dir``, read into a model,
-    ``Model.controls.shell_tangent_drilling`` set, and the model run there."""
-    from hollowbody.api import load_model, run_model
-
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    deck, setup = crush_deck(case)
-    path = out / "crush.k"
-    write_deck(deck, path)
-    t0 = time.perf_counter()
-    model = load_model(path)
-    model.controls.shell_tangent_drilling = True
-    run_model(model, out, vtk=False, label=path.name, overwrite=True, inputs=(path,), threads=1)
-    res = read_crush(out, case, setup)
-    res.wall_seconds = time.perf_counter() - t0
-    return res
 
 
 def row(r: CrushResult, suffix: str = "") -> str:
@@ -152,7 +131,7 @@ def main() -> None:
             skipped.append(c.name)
             continue
         if a.tangent_drilling:
-            r = run_tangent_drilling(replace(c), out / (c.name + suffix))
+            r = run_crush(replace(c), out / (c.name + suffix), tangent_drilling=True)
         else:
             r = run_crush(replace(c), out / c.name, threads=1)
         results.append(record(r, suffix))

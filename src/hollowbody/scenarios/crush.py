@@ -319,10 +319,11 @@ def read_crush(out_dir: str | Path, case: CrushCase, setup: CrushSetup) -> Crush
 
 
 def run_crush(case: CrushCase, out_dir: str | Path, threads: int | None = 1,
-              overwrite: bool = True) -> CrushResult:
+              overwrite: bool = True, tangent_drilling: bool = False) -> CrushResult:
     """Write the deck of ``case`` into ``out_dir``, run it there (no VTK states) and
-    return its measures."""
-    from hollowbody.api import run_deck
+    return its measures. ``tangent_drilling`` switches the shells' opt-in tangent
+    drilling spring on (``Model.controls.shell_tangent_drilling``; no deck card)."""
+    from hollowbody.api import load_model, run_deck, run_model
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -330,7 +331,13 @@ def run_crush(case: CrushCase, out_dir: str | Path, threads: int | None = 1,
     path = out / "crush.k"
     write_deck(deck, path)
     t0 = time.perf_counter()
-    run_deck(path, out, vtk=False, overwrite=overwrite, threads=threads)
+    if tangent_drilling:
+        model = load_model(path)
+        model.controls.shell_tangent_drilling = True
+        run_model(model, out, vtk=False, label=path.name, overwrite=overwrite, inputs=(path,),
+                  threads=threads)
+    else:
+        run_deck(path, out, vtk=False, overwrite=overwrite, threads=threads)
     res = read_crush(out, case, setup)
     res.wall_seconds = time.perf_counter() - t0
     return res
