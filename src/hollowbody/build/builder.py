@@ -14,6 +14,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from hollowbody.build.surface_refs import defined_surface
 from hollowbody.build.tied import tied_contacts
 from hollowbody.build.unsupported import not_defined, unsupported_definitions
 from hollowbody.errors import DeckError
@@ -534,14 +535,9 @@ def _surface(c: Contact, model: m.Model, sid: int, typ: int, name: str,
              main: bool) -> m.SurfaceRef:
     if typ == 5 or (c.type.endswith("SINGLE_SURFACE") and sid == 0):
         return m.SurfaceRef("all")
-    if typ == 0 and sid in model.segment_sets:
-        return m.SurfaceRef("segments", segments=model.segment_sets[sid])
-    if typ == 2 and sid in model.part_sets:
-        return m.SurfaceRef("parts", pids=list(model.part_sets[sid]))
-    if typ == 3 and sid in model.parts:
-        return m.SurfaceRef("parts", pids=[sid])
-    if typ == 4 and not main and sid in model.node_sets:
-        return m.SurfaceRef("nodes", nodes=model.node_sets[sid])
+    ref = None if (typ == 4 and main) else defined_surface(model, sid, typ)
+    if ref is not None:
+        return ref
     what = _SURFACE_TYPES.get(typ)
     if typ in (0, 2, 3) or (typ == 4 and not main):
         raise _err(c, f"contact refers to {what} {sid} ({name}={typ}) which is not defined")

@@ -9,6 +9,7 @@ contact's card (``deck.k:12: *CONTACT_TIED_SHELL_EDGE_TO_SURFACE_ID: ...``).
 
 from __future__ import annotations
 
+from hollowbody.build.surface_refs import defined_surface
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import TiedContact
 from hollowbody.model import model as m
@@ -33,14 +34,9 @@ def _side(c: TiedContact, model: m.Model, sid: int, typ: int, name: str,
         raise _err(c, f"{name}={typ}" + (f" ({what})" if what else "") + " is not supported "
                    "for a tied contact (0 segment set, 2 part set, 3 part"
                    + ("" if master else ", 4 node set") + ")")
-    if typ == 0 and sid in model.segment_sets:
-        return m.SurfaceRef("segments", segments=model.segment_sets[sid])
-    if typ == 2 and sid in model.part_sets:
-        return m.SurfaceRef("parts", pids=list(model.part_sets[sid]))
-    if typ == 3 and sid in model.parts:
-        return m.SurfaceRef("parts", pids=[sid])
-    if typ == 4 and sid in model.node_sets:
-        return m.SurfaceRef("nodes", nodes=model.node_sets[sid])
+    ref = defined_surface(model, sid, typ)
+    if ref is not None:
+        return ref
     raise _err(c, f"tied contact refers to {what} {sid} ({name}={typ}) which is not defined")
 
 
