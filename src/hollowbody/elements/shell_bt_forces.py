@@ -199,6 +199,7 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
     update_thickness = kp[K_THICK_UPDATE] > 0.0
     drill_tangent = kp[K_DRILL_TANGENT] > 0.0
     hg_tangent = kp[K_HG_TANGENT] > 0.0
+    tangent_on = drill_tangent or hg_tangent  # the ratios below are read only then
     kind = _law.KIND
     e_mod = mp[P_E]
     nu = mp[P_NU]
@@ -294,9 +295,10 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                 epn = epsp[i, k]
                 # elastic trial and yield check here; the return mapping only when needed
                 q0, q1, q2 = elastic_plane_stress(s0, s1, s2, exx, eyy, exy, e_mod, nu)
-                dwe = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
-                we_m += wk * dwe
-                we_b += wk * z * z * dwe
+                if tangent_on:
+                    dwe = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                    we_m += wk * dwe
+                    we_b += wk * z * z * dwe
                 x0 = q0 - a0
                 x1 = q1 - a1
                 x2 = q2 - a2
@@ -311,9 +313,10 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
                     back[i, k, 1] = a1
                     back[i, k, 2] = a2
                 epsp[i, k] = epn
-                dwa = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
-                wa_m += wk * dwa
-                wa_b += wk * z * z * dwa
+                if tangent_on:
+                    dwa = (q0 - s0) * exx + (q1 - s1) * eyy + (q2 - s2) * exy
+                    wa_m += wk * dwa
+                    wa_b += wk * z * z * dwa
                 pm = max(pm, epn)
                 if fail > 0.0 and epn >= fail:
                     pfail[i, k] = 1
@@ -329,9 +332,12 @@ def bt_shell_range(lo, hi, x, v, w, dt, geom, state, params, history, kp, out):
             mxx += wk * z * q0
             myy += wk * z * q1
             mxy += wk * z * q2
-        e_small = e_mod * TANGENT_STRAIN_SMALL * TANGENT_STRAIN_SMALL * t
-        eta_m = tangent_ratio(wa_m, we_m, e_small)
-        eta_b = tangent_ratio(wa_b, we_b, e_small * h2 * h2)
+        eta_m = 1.0
+        eta_b = 1.0
+        if tangent_on:
+            e_small = e_mod * TANGENT_STRAIN_SMALL * TANGENT_STRAIN_SMALL * t
+            eta_m = tangent_ratio(wa_m, we_m, e_small)
+            eta_b = tangent_ratio(wa_b, we_b, e_small * h2 * h2)
         # transverse shear: elastic, uniform through the thickness, SHRF on the resultant
         to0 = tau[i, 0]
         to1 = tau[i, 1]
