@@ -14,12 +14,14 @@ listed as not run). Prints one table row per case as it ends:
 and writes ``results.json`` (one object per case) into ``--out``.
 
     NUMBA_NUM_THREADS=1 python benchmarks/bench_crush.py [--budget 1500] [--out DIR]
-        [--only NAME-SUBSTRING ...] [--speed 10] [--tangent-drilling]
+        [--only NAME-SUBSTRING ...] [--speed 10] [--tangent-drilling] [--drilling F]
 
 ``--tangent-drilling`` runs the cases with the shells' opt-in tangent drilling
 spring (``Model.controls.shell_tangent_drilling``, docs/shells.md; no deck card,
 so the deck is read into a model, the control set, and the model run); the
-cases' run folders and rows then carry the suffix ``-tdrill``.
+cases' run folders and rows then carry the suffix ``-tdrill``. ``--drilling F``
+sets the shells' drilling stiffness factor (``Model.controls.shell_drilling``,
+likewise no deck card; suffix ``-drillF``).
 
 See docs/crush.md.
 """
@@ -96,7 +98,7 @@ def row(r: CrushResult, suffix: str = "") -> str:
 def record(r: CrushResult, suffix: str = "") -> dict:
     """JSON-able summary of a case (``suffix`` appended to its name)."""
     return {"case": asdict(r.case), "name": r.case.name + suffix, "status": r.status,
-            "tangent_drilling": suffix == "-tdrill",
+            "tangent_drilling": "-tdrill" in suffix,
             "mesh": asdict(r.setup), "forms_kN": r.reference.forms,
             "half_fold_closed_form": r.reference.half_fold, "window_mm": list(r.window),
             "mean_force_kN": r.mean_force, "ratio_to_high": r.ratio,
@@ -116,6 +118,8 @@ def main() -> None:
     ap.add_argument("--speed", type=float, default=10.0, help="plate speed, mm/ms")
     ap.add_argument("--tangent-drilling", action="store_true",
                     help="shells with the opt-in tangent drilling spring (docs/shells.md)")
+    ap.add_argument("--drilling", type=float, default=None,
+                    help="shell drilling stiffness factor (default: the solver's, docs/shells.md)")
     a = ap.parse_args()
     out = Path(a.out) if a.out else Path(tempfile.mkdtemp(prefix="bench_crush_"))
     todo = cases(a.speed)
@@ -126,14 +130,14 @@ def main() -> None:
     t0 = time.perf_counter()
     results, skipped = [], []
     suffix = "-tdrill" if a.tangent_drilling else ""
+    if a.drilling is not None:
+        suffix += f"-drill{a.drilling:g}"
     for c in todo:
         if time.perf_counter() - t0 > a.budget:
             skipped.append(c.name)
             continue
-        if a.tangent_drilling:
-            r = run_crush(replace(c), out / (c.name + suffix), tangent_drilling=True)
-        else:
-            r = run_crush(replace(c), out / c.name, threads=1)
+        r = run_crush(replace(c), out / (c.name + suffix), threads=1,
+                      tangent_drilling=a.tangent_drilling, drilling=a.drilling)
         results.append(record(r, suffix))
         print(row(r, suffix) + ("" if r.status == "normal termination" else f" {r.status}"),
               flush=True)

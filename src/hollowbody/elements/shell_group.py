@@ -21,12 +21,16 @@ rectangles, distorted quadrilaterals and triangles; A/8 is not enough for
 square elements with nu = 0. Thick elements (t^2 > 3 A) keep the physical
 rotary inertia t^2 / 12.
 
-Drilling: nodal rotations about the element normal have no physical
-stiffness in the Belytschko-Tsay shell; a small elastic drilling stiffness
-``drilling * G t A`` per node ties them to the element's in-plane spin (its
-energy is reported with the hourglass energy). Without it a bent shell's
-moments can drive the free drilling rotations (a rolled-up strip flutters);
-``drilling=0`` gives LS-DYNA's behaviour. ``drilling_tangent`` (default
+Drilling: nodal rotations about the element normal have no stiffness in the
+Belytschko-Tsay shell, and by default none is added (``drilling=0``, LS-DYNA's
+element): an element neither resists nor produces a moment about its normal.
+An optional elastic drilling stiffness ``drilling * G t A`` per node ties them
+to the element's in-plane spin (its energy is reported with the hourglass
+energy); it is needed only where an external moment acts about a shell's
+normal at a node no other element turns (a fixed-axis end moment on a rolled-up
+strip spins its free tip otherwise), and it holds the corner between two walls
+like a stiff hinge (folding tubes crush 1.2-1.5x too stiffly with 0.1, see
+docs/crush.md). ``drilling_tangent`` (default
 False, opt-in; in a run ``Model.controls.shell_tangent_drilling``) loads the
 springs with the section's tangent ratio times their stiffness and unloads
 them elastically (a yielded wall no longer holds a corner between two walls
@@ -61,8 +65,21 @@ from hollowbody.materials.shell_laws import SHELL_LAWS
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SectionDef, ShellGroup
 
 DEFAULT_SHRF = 5.0 / 6.0
-#: Drilling stiffness factor: k = factor * G t A per node (see docs/shells.md).
+#: Drilling stiffness factor: k = factor * G t A per node (see docs/shells.md); 0 is
+#: LS-DYNA's Belytschko-Tsay shell, whose drilling rotations are free.
 DEFAULT_DRILLING = 0.1
+#: Factor of the opt-in tangent drilling spring when none is given.
+TANGENT_DRILLING = 0.1
+
+
+def drilling_factor(given: float | None, tangent: bool) -> float:
+    """The drilling stiffness factor of a run: ``given`` if set, else
+    :data:`TANGENT_DRILLING` with the tangent spring on, else :data:`DEFAULT_DRILLING`."""
+    if given is not None:
+        if given < 0.0:
+            raise ValueError(f"shell drilling factor must be >= 0 (got {given:g})")
+        return float(given)
+    return TANGENT_DRILLING if tangent else DEFAULT_DRILLING
 SUPPORTED_ELFORM = (0, 2)
 
 

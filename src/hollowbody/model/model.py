@@ -295,8 +295,12 @@ class Controls:
     slsfac: float = 0.1
     contact_sort_interval: int = 100  # cycles between bucket sorts (NSBCS)
     tiedprj: int = 0  # TIEDPRJ: 0 tied slave nodes moved onto the surface, 1 kept where they are
-    #: not an LS-DYNA card (set through the API; docs/shells.md): the shells' drilling
-    #: springs load with the section's tangent ratio (opt-in)
+    #: not an LS-DYNA card (set through the API; docs/shells.md): a drilling spring of
+    #: ``shell_drilling * G t A`` per shell node (0: none, LS-DYNA's Belytschko-Tsay shell;
+    #: None: 0, or ``TANGENT_DRILLING`` when the tangent spring is on)
+    shell_drilling: float | None = None
+    #: not an LS-DYNA card: the shells' drilling springs load with the section's tangent
+    #: ratio (opt-in)
     shell_tangent_drilling: bool = False
 
 

@@ -319,10 +319,13 @@ def read_crush(out_dir: str | Path, case: CrushCase, setup: CrushSetup) -> Crush
 
 
 def run_crush(case: CrushCase, out_dir: str | Path, threads: int | None = 1,
-              overwrite: bool = True, tangent_drilling: bool = False) -> CrushResult:
+              overwrite: bool = True, tangent_drilling: bool = False,
+              drilling: float | None = None) -> CrushResult:
     """Write the deck of ``case`` into ``out_dir``, run it there (no VTK states) and
     return its measures. ``tangent_drilling`` switches the shells' opt-in tangent
-    drilling spring on (``Model.controls.shell_tangent_drilling``; no deck card)."""
+    drilling spring on (``Model.controls.shell_tangent_drilling``) and ``drilling`` sets
+    the drilling stiffness factor (``Model.controls.shell_drilling``); neither is a deck
+    card."""
     from hollowbody.api import load_model, run_deck, run_model
 
     out = Path(out_dir)
@@ -331,9 +334,10 @@ def run_crush(case: CrushCase, out_dir: str | Path, threads: int | None = 1,
     path = out / "crush.k"
     write_deck(deck, path)
     t0 = time.perf_counter()
-    if tangent_drilling:
+    if tangent_drilling or drilling is not None:
         model = load_model(path)
-        model.controls.shell_tangent_drilling = True
+        model.controls.shell_tangent_drilling = bool(tangent_drilling)
+        model.controls.shell_drilling = drilling
         run_model(model, out, vtk=False, label=path.name, overwrite=overwrite, inputs=(path,),
                   threads=threads)
     else:

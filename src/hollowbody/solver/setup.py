@@ -116,7 +116,7 @@ def assemble(model: Model) -> Assembly:
         if mat.kind == "rigid":
             continue
         try:
-            from hollowbody.elements.shell_group import ShellGroupRuntime
+            from hollowbody.elements.shell_group import ShellGroupRuntime, drilling_factor
         except ImportError:
             part = model.parts[g.pid]
             raise DeckError(f"part {g.pid} has deformable shell elements, which this version "
@@ -126,6 +126,9 @@ def assemble(model: Model) -> Assembly:
                                               model.hourglass_of(g.pid), model.curves,
                                               x0,
                                               thickness_update=model.controls.istupd == 1,
+                                              drilling=drilling_factor(
+                                                  model.controls.shell_drilling,
+                                                  model.controls.shell_tangent_drilling),
                                               drilling_tangent=(
                                                   model.controls.shell_tangent_drilling)))
     asm.counts = counts

@@ -198,7 +198,7 @@ def test_rigid_rotation_leaves_the_tangent_scaled_forces_alone(tangent):
                       params={"E": E, "PR": NU, "SIGY": 0.2, "ETAN": 0.0, "BETA": 1.0})
     d = ShellDriver(x0, conn, mat, section(5), thickness=0.5,
                     hourglass=HourglassDef(hgid=1, ihq=4, qm=0.1), hourglass_tangent=tangent,
-                    drilling_tangent=tangent)
+                    drilling=DRILL, drilling_tangent=tangent)
     mask = np.ones((8, 3), dtype=bool)
     dt = 1e-4
     d.dt_fixed = dt
@@ -258,7 +258,8 @@ def test_elastic_plastic_strip_rolls_stably_to_a_uniform_curvature():
     mat = MaterialDef(mid=1, kind="plastic003", density=rho,
                       params={"E": e_mod, "PR": 0.0, "SIGY": sigy, "ETAN": 0.0, "BETA": 1.0})
     x, conn = plate_mesh(length, width, 20, 1)
-    d = ShellDriver(x, conn, mat, section(5), thickness=t, damping=1.0, drilling_tangent=True)
+    d = ShellDriver(x, conn, mat, section(5), thickness=t, damping=1.0, drilling=DRILL,
+                    drilling_tangent=True)
     root = np.isclose(x[:, 0], 0.0)
     tip = np.isclose(x[:, 0], length)
     d.fix_v[root] = True
