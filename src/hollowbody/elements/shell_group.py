@@ -67,7 +67,7 @@ from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SectionDef,
 DEFAULT_SHRF = 5.0 / 6.0
 #: Drilling stiffness factor: k = factor * G t A per node (see docs/shells.md); 0 is
 #: LS-DYNA's Belytschko-Tsay shell, whose drilling rotations are free.
-DEFAULT_DRILLING = 0.1
+DEFAULT_DRILLING = 0.0
 #: Factor of the opt-in tangent drilling spring when none is given.
 TANGENT_DRILLING = 0.1
 
