@@ -11,8 +11,7 @@ cached in DIR/evaluations.jsonl and the GA checkpointed after each
 generation: --resume continues a stopped calibration without running
 anything twice.
 
-Parameters (default bounds): E 10..400 MPa, yield 0.5..20 MPa, etan 0..50 MPa,
-thickness 0.5..3 mm. Outputs in DIR: calibration.json, convergence.png,
+Parameters (default bounds): {bounds}. Outputs in DIR: calibration.json, convergence.png,
 overlay.png, best_hollow/deck.k, table1.md, table1.csv.
 
 Exit codes: 0 done, 2 bad input, 3 the calibration could not run (solid
@@ -29,12 +28,20 @@ from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
+
+def _default_bounds(sep: str = "..") -> str:
+    """The calibrated parameters' default bounds, e.g. ``E 10..400 MPa, ...``."""
+    from hollowbody.calibrate.space import PARAMETERS
+
+    return ", ".join(f"{name} {lo:g}{sep}{hi:g} {unit}"
+                     for name, (unit, lo, hi, _) in PARAMETERS.items())
+
 EXIT_FAILED = 3
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("calibrate", help="fit the hollow structure to the solid tissue (GA)",
-                       description=plain(__doc__),
+                       description=plain(__doc__.format(bounds=_default_bounds())),
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--tissue", choices=("muscle", "fat"), required=True,
                    help="tissue to calibrate (required)")
@@ -45,8 +52,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "thickness (default E,yield)")
     p.add_argument("--bounds", nargs="+", action="extend", default=[], metavar="NAME=LO:HI",
                    help="bounds of a calibrated parameter, e.g. E=20:300 yield=1:10 "
-                        "(MPa; thickness in mm; default: E 10:400, yield 0.5:20, etan 0:50, "
-                        "thickness 0.5:3)")
+                        f"(default: {_default_bounds(':')})")
     p.add_argument("--fix", nargs="+", action="extend", default=[], metavar="NAME=VALUE",
                    help="value of a parameter that is not calibrated, e.g. thickness=1.2 "
                         "(default: etan 0 MPa, thickness 1.5 mm)")
