@@ -204,7 +204,7 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     deck.add(Part(pid=PID_IMPACTOR, secid=2, mid=2, title=f"impactor ({cfg.impactor})"))
     deck.add(SectionShell(secid=2, t1=IMPACTOR_SHELL_T, nip=2))
     deck.add(MatRigid(mid=2, ro=rho_imp, e=210.0, pr=0.3, cmo=1, con1=4, con2=7))
-    bottom = block_ids[xb[:, 2] < 1e-9]
+    bottom = block_ids[xb[:, 2] < base_tolerance(cfg)]
     deck.add(SetNodeList(sid=1, nodes=bottom.tolist()))
     deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1, dofrx=1, dofry=1, dofrz=1))
     deck.add(InitialVelocityGeneration(id=PID_IMPACTOR, styp=2, vz=-cfg.speed))
@@ -222,6 +222,21 @@ def build_block_deck(cfg: BlockConfig):  # -> Deck
     deck.add(DatabaseBinaryD3plot(dt=end / cfg.states))
     deck.add(DatabaseHistoryNode(ids=[int(imp_ids[0])]))
     return deck
+
+
+def base_tolerance(cfg: BlockConfig) -> float:
+    """Height (mm) below which a block node lies on the fixed base.
+
+    The hollow block's bottom walls are offset out of their plane like every wall
+    panel (the imperfection, up to its amplitude on either side): all their nodes
+    rest on the base, so the bound is half the walls' in-plane element size, far
+    above the offset and below the first row of the vertical walls. (With
+    ``z <= 0`` the panels offset upwards were left free, membranes over a void
+    through which the crushed walls were pushed below the base.)
+    """
+    if cfg.structure == "hollow":
+        return 0.5 * cfg.cell / cfg.elements_per_edge
+    return 1e-9
 
 
 def _add_solid_block(deck, cfg: BlockConfig):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from hollowbody.build import build_model
@@ -45,3 +46,29 @@ def test_runs_through_the_base_are_left_out_of_the_wall_time_ratio():
                                ("solid", 100.0, 10.0, "stopped"),
                                ("hollow", 100.0, 5.0, "through the base")]]
     assert wall_time_ratios(rows) == {40.0: 2.0}
+
+
+def test_every_node_of_the_hollow_blocks_bottom_walls_is_fixed():
+    """The bottom walls are offset out of their plane like every panel (up to 0.15 mm
+    either side): all their nodes rest on the fixed base, none of the walls above it
+    (the first row of the vertical walls is 7.5 mm up). With ``z <= 0`` the panels
+    offset upwards were free (162 of the 625 nodes)."""
+    model = build_model(build_block_deck(BlockConfig(structure="hollow")))
+    z = model.node_x0[:, 2]
+    fixed = np.zeros(z.shape[0], dtype=bool)
+    for spc in model.spcs:
+        fixed[spc.nodes[spc.dofs.all(axis=1)]] = True
+    block = z < 90.0 + 1.0  # the impactor starts above the block
+    bottom = block & (np.abs(z) <= 0.15 + 1e-9)
+    assert bottom.sum() == 625  # (6 x 4 + 1)^2 nodes of the bottom walls
+    assert np.array_equal(fixed & block, bottom)
+    assert (z[bottom] > 1e-9).sum() == 162  # those left free before
+
+
+def test_solid_block_fixes_its_bottom_face_only():
+    model = build_model(build_block_deck(BlockConfig(structure="solid", mesh=30.0)))
+    z = model.node_x0[:, 2]
+    fixed = np.zeros(z.shape[0], dtype=bool)
+    for spc in model.spcs:
+        fixed[spc.nodes[spc.dofs.all(axis=1)]] = True
+    assert np.array_equal(fixed & (z < 91.0), np.abs(z) < 1e-9)
