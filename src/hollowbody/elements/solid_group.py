@@ -4,7 +4,9 @@
 time-varying arrays of the group (stress, volume, hourglass and material
 history, energies) and the work arrays of its kernels (allocated once).
 Formulation: 8-node one-point hexahedron (ELFORM 1) with Flanagan-Belytschko
-hourglass control and LS-DYNA bulk viscosity; degenerate wedges and
+hourglass control (viscous IHQ 1-3, stiffness IHQ 4-5), the Belytschko-Bindeman
+assumed-strain stiffness (IHQ 6; IHQ 7 and above run as IHQ 6 with a warning)
+and LS-DYNA bulk viscosity; degenerate wedges and
 tetrahedra run through the same kernel (see docs/elements.md).
 Materials: the laws of :data:`hollowbody.materials.solid_laws.SOLID_LAWS`
 (*MAT_ELASTIC ``"elastic"``, *MAT_SIMPLIFIED_RUBBER ``"rubber181"``); one
@@ -32,7 +34,16 @@ from hollowbody.elements.hex8_kinematics import (
     canonical_connectivity,
     hex8_gradients,
 )
-from hollowbody.elements.hex8_solid_kernels import make_hex8_kernel
+from hollowbody.elements.hex8_solid_kernels import (
+    H_G,
+    H_IHQ,
+    H_NU,
+    H_Q1,
+    H_Q2,
+    H_QH,
+    N_HG,
+    make_hex8_kernel,
+)
 from hollowbody.elements.time_step import element_time_steps
 from hollowbody.errors import DeckError
 from hollowbody.materials.solid_laws import HISTORY_FIELDS, SOLID_LAWS
@@ -110,14 +121,17 @@ class SolidGroupRuntime:
         self._kernel = make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
-        if ihq > 5:
+        if ihq > 6:
             warnings.warn(f"part {self.pid}: hourglass type IHQ={ihq} is not available for "
-                          "solids; the Flanagan-Belytschko stiffness form (IHQ=4) is used "
-                          f"with QM={hourglass.qm}", UserWarning, stacklevel=2)
-            ihq = 4
+                          "solids; the assumed-strain stiffness form (IHQ=6, incremental) "
+                          f"is used with QM={hourglass.qm}", UserWarning, stacklevel=2)
+            ihq = 6
         self.ihq = ihq
-        self._hg = np.array([float(ihq), float(hourglass.qm), float(hourglass.q1),
-                             float(hourglass.q2)])
+        g_hg, nu_hg = law.solid_hourglass_moduli(self._params)
+        self._hg = np.zeros(N_HG)
+        self._hg[[H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_NU]] = (
+            float(ihq), float(hourglass.qm), float(hourglass.q1), float(hourglass.q2),
+            g_hg, nu_hg)
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
 
         self._fwork = np.zeros((e, 8, 3))
