@@ -64,8 +64,8 @@ from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.time_step import critical_time_step
 
 #: Indices into the hourglass/bulk-viscosity parameter vector ``hg``: IHQ, QH, Q1, Q2,
-#: and the small-strain shear modulus (GPa) and Poisson ratio of the law (IHQ 6).
-H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_NU = range(6)
+#: and the small-strain shear and bulk moduli (GPa) of the law (IHQ 6).
+H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_K = range(6)
 N_HG = 6
 
 _THIRD = 1.0 / 3.0
@@ -137,14 +137,18 @@ def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, 
                hgstate, fwork, elastic, fr):
     """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J).
 
-    elastic = (E GPa, nu, G GPa), the law's small-strain constants (IHQ 6);
-    fr (3, 3) scratch for the element frame.
+    elastic = (G0, K) GPa, the law's small-strain shear and bulk moduli (IHQ 6: the
+    shear modulus used is ``max(G0, 3/4 (modulus - K))``, the law's current tangent
+    implied by its modulus ``K + 4G/3``); fr (3, 3) scratch for the element frame.
     """
     hourglass_hx(xe, hx)
     hourglass_rates(ve, lg, hx, qd)
     if ihq == 6:
+        g0, bulk = elastic
+        g = max(g0, 0.75 * (modulus - bulk))
+        nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
         a0, a1, a2 = element_frame(xe, fr)
-        w = assumed_strain_hourglass(qh, elastic[0], elastic[1], elastic[2], vol, dt, rot, fr,
+        w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
                                      a0, a1, a2, qd, hgstate, e, qf)
     elif ihq >= 4:
         bb = 0.0
@@ -189,7 +193,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
       out: f^{n+1}), dt_elem (e,) ms out, c_elem (e,) mm/ms out);
     * params, history: the law's parameter and history tuples;
     * hg (N_HG,) float64: IHQ (6: assumed strain, 4 and 5: FB stiffness, else
-      viscous), QH, Q1, Q2, shear modulus G (GPa) and Poisson ratio of the law;
+      viscous), QH, Q1, Q2, small-strain shear and bulk moduli G0, K (GPa) of the law;
       out (nchunk, 5) float64 (module docstring).
     """
     key = law.__name__
@@ -207,8 +211,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
         consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
         qh, q1, q2 = hg[H_QH], hg[H_Q1], hg[H_Q2]
-        g_hg, nu_hg = hg[H_G], hg[H_NU]
-        elastic = (2.0 * g_hg * (1.0 + nu_hg), nu_hg, g_hg)
+        elastic = (hg[H_G], hg[H_K])
         nchunk = bounds.shape[0] - 1
         for ck in prange(nchunk):
             xe = np.empty((8, 3))

@@ -37,7 +37,7 @@ from hollowbody.elements.hex8_kinematics import (
 from hollowbody.elements.hex8_solid_kernels import (
     H_G,
     H_IHQ,
-    H_NU,
+    H_K,
     H_Q1,
     H_Q2,
     H_QH,
@@ -127,11 +127,11 @@ class SolidGroupRuntime:
                           f"is used with QM={hourglass.qm}", UserWarning, stacklevel=2)
             ihq = 6
         self.ihq = ihq
-        g_hg, nu_hg = law.solid_hourglass_moduli(self._params)
+        g_hg, k_hg = law.solid_hourglass_moduli(self._params)
         self._hg = np.zeros(N_HG)
-        self._hg[[H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_NU]] = (
+        self._hg[[H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_K]] = (
             float(ihq), float(hourglass.qm), float(hourglass.q1), float(hourglass.q2),
-            g_hg, nu_hg)
+            g_hg, k_hg)
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
 
         self._fwork = np.zeros((e, 8, 3))

@@ -100,11 +100,10 @@ def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
 
 
 def solid_hourglass_moduli(params: tuple[np.ndarray, ...]) -> tuple[float, float]:
-    """Small-strain shear modulus G (GPa) and Poisson ratio of the assumed-strain
-    hourglass stiffness (IHQ 6): the card's E and PR."""
+    """Shear and bulk moduli (GPa) of the assumed-strain hourglass stiffness (IHQ 6),
+    from the card's E and PR."""
     mp = params[0]
-    lam, mu = float(mp[P_LAMBDA]), float(mp[P_MU])
-    return mu, lam / (2.0 * (lam + mu))
+    return float(mp[P_MU]), float(mp[P_BULK])
 
 
 def solid_history(params: tuple[np.ndarray, ...], n_elem: int) -> dict[str, np.ndarray]:

@@ -214,12 +214,10 @@ def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
 
 
 def solid_hourglass_moduli(params: tuple[np.ndarray, ...]) -> tuple[float, float]:
-    """Small-strain shear modulus and Poisson ratio of the assumed-strain hourglass
-    stiffness (IHQ 6): ``G0 = E0 / 3`` from the curve's initial slope and
-    ``nu = (3 KM - 2 G0) / (2 (3 KM + G0))``. The frictional spring G is damping
-    and is left out."""
-    km, g0 = float(params[0][P_BULK]), float(params[0][P_G0])
-    return g0, (3.0 * km - 2.0 * g0) / (2.0 * (3.0 * km + g0))
+    """Small-strain shear and bulk moduli (GPa) of the assumed-strain hourglass
+    stiffness (IHQ 6): ``G0 = E0 / 3`` from the curve's initial slope and KM. (The
+    element uses the larger of G0 and the current tangent, see hex8_solid_kernels.)"""
+    return float(params[0][P_G0]), float(params[0][P_BULK])
 
 
 def friction_on(mp: np.ndarray) -> bool:
