@@ -59,7 +59,11 @@ from hollowbody.elements.hourglass import (
     hourglass_stiffness,
     hourglass_viscous,
 )
-from hollowbody.elements.hourglass_assumed_strain import assumed_strain_hourglass, element_frame
+from hollowbody.elements.hourglass_assumed_strain import (
+    assumed_strain_hourglass,
+    assumed_strain_total,
+    element_frame,
+)
 from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.time_step import critical_time_step
 
@@ -134,22 +138,27 @@ def _zero(fwork, e):
 
 @njit(cache=True, inline="always", fastmath={"contract"})
 def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, qd, qf,
-               hgstate, fwork, elastic, fr):
+               hgstate, hgdisp, fwork, elastic, fr, qw):
     """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J).
 
     elastic = (G0, K) GPa, the law's small-strain shear and bulk moduli (IHQ 6: the
     shear modulus used is ``max(G0, 3/4 (modulus - K))``, the law's current tangent
-    implied by its modulus ``K + 4G/3``); fr (3, 3) scratch for the element frame.
+    implied by its modulus ``K + 4G/3``); fr (3, 3), qw (4, 3) scratch; hgdisp
+    (e, 4, 3) mm hourglass displacements (IHQ 7 only).
     """
     hourglass_hx(xe, hx)
     hourglass_rates(ve, lg, hx, qd)
-    if ihq == 6:
+    if ihq >= 6:
         g0, bulk = elastic
         g = max(g0, 0.75 * (modulus - bulk))
         nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
         a0, a1, a2 = element_frame(xe, fr)
-        w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
-                                     a0, a1, a2, qd, hgstate, e, qf)
+        if ihq == 7:
+            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
+                                     a0, a1, a2, qd, hgstate, hgdisp, e, qf, qw)
+        else:
+            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
+                                         a0, a1, a2, qd, hgstate, e, qf)
     elif ihq >= 4:
         bb = 0.0
         for a in range(8):
@@ -189,12 +198,13 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
       gradients, bounds (nchunk + 1,) int64 element ranges of the chunks);
     * state = (alive (e,) bool, stress (e, 6) GPa in/out, volume (e,) mm^3 in
       (previous) / out (current), hgstate (e, 4, 3) kN generalised hourglass
-      forces of the last call, fwork (e, 8, 3) kN element forces (in: f^n,
+      forces of the last call, hgdisp (e, 4, 3) mm hourglass displacements (IHQ 7;
+      any (k, 4, 3) array otherwise), fwork (e, 8, 3) kN element forces (in: f^n,
       out: f^{n+1}), dt_elem (e,) ms out, c_elem (e,) mm/ms out);
     * params, history: the law's parameter and history tuples;
-    * hg (N_HG,) float64: IHQ (6: assumed strain, 4 and 5: FB stiffness, else
-      viscous), QH, Q1, Q2, small-strain shear and bulk moduli G0, K (GPa) of the law;
-      out (nchunk, 5) float64 (module docstring).
+    * hg (N_HG,) float64: IHQ (6 / 7: assumed strain, incremental / total;
+      4 and 5: FB stiffness; else viscous), QH, Q1, Q2, small-strain shear and
+      bulk moduli G0, K (GPa) of the law; out (nchunk, 5) float64 (module docstring).
     """
     key = law.__name__
     kernel = _KERNELS.get(key)
@@ -207,7 +217,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
         if stamp < 0:  # never: the sources' digest only keys the on-disk cache
             return
         conn, lfac, volume0, b0, bounds = geom
-        alive, stress, volume, hgstate, fwork, dt_elem, c_elem = state
+        alive, stress, volume, hgstate, hgdisp, fwork, dt_elem, c_elem = state
         consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
         qh, q1, q2 = hg[H_QH], hg[H_Q1], hg[H_Q2]
@@ -225,6 +235,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
             qd = np.empty((4, 3))
             qf = np.empty((4, 3))
             fr = np.empty((3, 3))
+            qw = np.empty((4, 3))
             eint = 0.0
             ehg = 0.0
             dtmin = np.inf
@@ -261,7 +272,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
                 dhg = 0.0
                 if qh > 0.0:
                     dhg = _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, bt, lg,
-                                     rot, hx, qd, qf, hgstate, fwork, elastic, fr)
+                                     rot, hx, qd, qf, hgstate, hgdisp, fwork, elastic, fr, qw)
                 dw = -0.5 * dt * (w_old + _power(ve, fwork, e))
                 eint += dw - dhg
                 ehg += dhg

@@ -96,18 +96,15 @@ def _plane(w, ebar, nu, g2, cn, cl, rn, rl, sn, sl):
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
-                             e, qf):
-    """Kernel: incremental assumed-strain hourglass forces (IHQ 6) of element ``e``.
+def assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, out):
+    """Kernel: out (4, 3) = K qd, the assumed-strain hourglass stiffness times qd.
 
-    qh: QH; e_mod, nu, shear: small-strain Young's modulus (GPa), Poisson ratio,
-    shear modulus (GPa); vol mm^3; dt ms; rot (3, 3) incremental rotation; fr
-    (3, 3) frame and a0..a2 half-lengths from :func:`element_frame`; qd (4, 3)
-    mm/ms hourglass rates (global components); state (e, 4, 3) kN generalised
-    hourglass forces, rotated and incremented in place; qf (4, 3) receives them.
-    Returns the work increment ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J).
+    qh: QH; e_mod, nu, shear: Young's modulus (GPa), Poisson ratio, shear modulus
+    (GPa); vol mm^3; fr (3, 3) frame and a0..a2 half-lengths from
+    :func:`element_frame`; qd (4, 3) hourglass amplitudes (or rates; global
+    components). Units of out: kN per mm of qd (kN/ms for rates).
     """
-    # local rates r[i][alpha] = e_i . qd_alpha
+    # local amplitudes r[i][alpha] = e_i . qd_alpha
     r00 = fr[0, 0] * qd[0, 0] + fr[1, 0] * qd[0, 1] + fr[2, 0] * qd[0, 2]
     r10 = fr[0, 1] * qd[0, 0] + fr[1, 1] * qd[0, 1] + fr[2, 1] * qd[0, 2]
     r20 = fr[0, 2] * qd[0, 0] + fr[1, 2] * qd[0, 1] + fr[2, 2] * qd[0, 2]
@@ -125,7 +122,7 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
     c01 = 0.125 / (a0 * a1)
     c12 = 0.125 / (a1 * a2)
     c02 = 0.125 / (a0 * a2)
-    s = qh * vol * dt / 3.0
+    s = qh * vol / 3.0
     # mode index: 0 = {0,1} (xi eta), 1 = {1,2} (eta zeta), 2 = {2,0} (zeta xi)
     # block m = 0 (n, l = 1, 2): normal q[1][{01}], q[2][{02}]; shear q[1][{02}], q[2][{01}]
     d10, d22, d12, d20 = _plane(s * a0 * a0, ebar, nu, g2, c01, c02, r10, r22, r12, r20)
@@ -137,14 +134,13 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
     d01 += t01
     d12 += t12
     # mode xi eta zeta: diagonal, QH V / 576 (E / a_i^2 + G / a_j^2 + G / a_k^2)
-    k4 = qh * vol * dt / 576.0
+    k4 = qh * vol / 576.0
     i0 = 1.0 / (a0 * a0)
     i1 = 1.0 / (a1 * a1)
     i2 = 1.0 / (a2 * a2)
     d03 = k4 * (e_mod * i0 + shear * (i1 + i2)) * r03
     d13 = k4 * (e_mod * i1 + shear * (i0 + i2)) * r13
     d23 = k4 * (e_mod * i2 + shear * (i0 + i1)) * r23
-    w = 0.0
     for m in range(4):
         if m == 0:
             l0, l1, l2 = d00, d10, d20
@@ -154,14 +150,39 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
             l0, l1, l2 = d02, d12, d22
         else:
             l0, l1, l2 = d03, d13, d23
-        s0, s1, s2 = state[e, m, 0], state[e, m, 1], state[e, m, 2]
-        o0 = rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2
-        o1 = rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2
-        o2 = rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2
-        # increment back to global components: sum_i e_i dQ[i]
-        n0 = o0 + fr[0, 0] * l0 + fr[0, 1] * l1 + fr[0, 2] * l2
-        n1 = o1 + fr[1, 0] * l0 + fr[1, 1] * l1 + fr[1, 2] * l2
-        n2 = o2 + fr[2, 0] * l0 + fr[2, 1] * l1 + fr[2, 2] * l2
+        # back to global components: sum_i e_i dQ[i]
+        out[m, 0] = fr[0, 0] * l0 + fr[0, 1] * l1 + fr[0, 2] * l2
+        out[m, 1] = fr[1, 0] * l0 + fr[1, 1] * l1 + fr[1, 2] * l2
+        out[m, 2] = fr[2, 0] * l0 + fr[2, 1] * l1 + fr[2, 2] * l2
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def _rotate_rows(rot, arr, e, m):
+    """rot . arr[e, m] (3 floats)."""
+    s0, s1, s2 = arr[e, m, 0], arr[e, m, 1], arr[e, m, 2]
+    return (rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2,
+            rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2,
+            rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2)
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
+                             e, qf):
+    """Kernel: incremental assumed-strain hourglass forces (IHQ 6) of element ``e``.
+
+    Moduli, vol, fr, a0..a2 as :func:`assumed_strain_product`; dt ms; rot (3, 3)
+    incremental rotation; qd (4, 3) mm/ms hourglass rates (global components);
+    state (e, 4, 3) kN generalised hourglass forces, rotated and incremented by
+    ``dt K qd`` in place; qf (4, 3) receives them. Returns the work increment
+    ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J).
+    """
+    assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, qf)
+    w = 0.0
+    for m in range(4):
+        o0, o1, o2 = _rotate_rows(rot, state, e, m)
+        n0 = o0 + dt * qf[m, 0]
+        n1 = o1 + dt * qf[m, 1]
+        n2 = o2 + dt * qf[m, 2]
         w += 0.5 * dt * ((o0 + n0) * qd[m, 0] + (o1 + n1) * qd[m, 1] + (o2 + n2) * qd[m, 2])
         state[e, m, 0] = n0
         state[e, m, 1] = n1
@@ -169,4 +190,35 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
         qf[m, 0] = n0
         qf[m, 1] = n1
         qf[m, 2] = n2
+    return w
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def assumed_strain_total(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
+                         disp, e, qf, work):
+    """Kernel: total-displacement assumed-strain hourglass forces (IHQ 7) of element ``e``.
+
+    As :func:`assumed_strain_hourglass`, but the state is the hourglass
+    displacement ``disp`` (e, 4, 3) mm (rotated with the element and incremented
+    by ``dt qd``) and the forces are ``Q = K disp`` with the current stiffness;
+    state (e, 4, 3) keeps the forces of the last call (work of the step). work
+    (4, 3) scratch. Returns the work increment (J).
+    """
+    for m in range(4):
+        d0, d1, d2 = _rotate_rows(rot, disp, e, m)
+        disp[e, m, 0] = d0 + dt * qd[m, 0]
+        disp[e, m, 1] = d1 + dt * qd[m, 1]
+        disp[e, m, 2] = d2 + dt * qd[m, 2]
+        work[m, 0] = disp[e, m, 0]
+        work[m, 1] = disp[e, m, 1]
+        work[m, 2] = disp[e, m, 2]
+    assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, work, qf)
+    w = 0.0
+    for m in range(4):
+        o0, o1, o2 = _rotate_rows(rot, state, e, m)
+        n0, n1, n2 = qf[m, 0], qf[m, 1], qf[m, 2]
+        w += 0.5 * dt * ((o0 + n0) * qd[m, 0] + (o1 + n1) * qd[m, 1] + (o2 + n2) * qd[m, 2])
+        state[e, m, 0] = n0
+        state[e, m, 1] = n1
+        state[e, m, 2] = n2
     return w

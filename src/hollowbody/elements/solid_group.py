@@ -5,7 +5,8 @@ time-varying arrays of the group (stress, volume, hourglass and material
 history, energies) and the work arrays of its kernels (allocated once).
 Formulation: 8-node one-point hexahedron (ELFORM 1) with Flanagan-Belytschko
 hourglass control (viscous IHQ 1-3, stiffness IHQ 4-5), the Belytschko-Bindeman
-assumed-strain stiffness (IHQ 6; IHQ 7 and above run as IHQ 6 with a warning)
+assumed-strain stiffness (IHQ 6 incremental, IHQ 7 total; IHQ 8 and above run as
+IHQ 6 with a warning)
 and LS-DYNA bulk viscosity; degenerate wedges and
 tetrahedra run through the same kernel (see docs/elements.md).
 Materials: the laws of :data:`hollowbody.materials.solid_laws.SOLID_LAWS`
@@ -79,7 +80,7 @@ class SolidGroupRuntime:
     #: arrays are restored in place, floats by assignment. ``_fwork`` holds the
     #: element forces f^n, read by the next call (energy of the step).
     STATE_FIELDS: tuple[str, ...] = (
-        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_fwork",
+        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_fwork",
         "internal_energy", "hourglass_energy") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
@@ -121,7 +122,7 @@ class SolidGroupRuntime:
         self._kernel = make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
-        if ihq > 6:
+        if ihq > 7:
             warnings.warn(f"part {self.pid}: hourglass type IHQ={ihq} is not available for "
                           "solids; the assumed-strain stiffness form (IHQ=6, incremental) "
                           f"is used with QM={hourglass.qm}", UserWarning, stacklevel=2)
@@ -133,6 +134,7 @@ class SolidGroupRuntime:
             float(ihq), float(hourglass.qm), float(hourglass.q1), float(hourglass.q2),
             g_hg, k_hg)
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
+        self._hgdisp = np.zeros((e if ihq == 7 else 1, 4, 3))  # hourglass displacements (mm)
 
         self._fwork = np.zeros((e, 8, 3))
         self.dt_elem = element_time_steps(self._conn_k, x0, c0, self.shape) if e else \
@@ -163,8 +165,8 @@ class SolidGroupRuntime:
         old_chunk = numba.set_parallel_chunksize(1)
         # argument groups built per call, so a rebound attribute is always the one used
         geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds)
-        state = (self.alive, self.stress, self.volume, self._hgstate, self._fwork,
-                 self.dt_elem, self._c)
+        state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
+                 self._fwork, self.dt_elem, self._c)
         history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
         self._kernel(x, v, float(dt), geom, state, self._params, history, self._hg, out)
         numba.set_parallel_chunksize(old_chunk)
@@ -187,6 +189,8 @@ class SolidGroupRuntime:
         self.alive[idx] = False
         self.stress[idx] = 0.0
         self._hgstate[idx] = 0.0
+        if self._hgdisp.shape[0] == self.n_elem:
+            self._hgdisp[idx] = 0.0
         self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), idx)
         self.dt_elem[idx] = np.inf
 

@@ -86,6 +86,7 @@ SOLIDS = {
                                            "SGL": 1.0, "SW": 1.0, "ST": 1.0, "LCID": 7}),
         {7: Curve(7, STRAIN, MPA * 1e-3)}, 4),
     "elastic-ihq6": (MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.45}), {}, 6),
+    "elastic-ihq7": (MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.45}), {}, 7),
 }
 
 

@@ -1,11 +1,11 @@
-"""*HOURGLASS IHQ=6 in a deck: read, checked and run as the assumed-strain form.
+"""*HOURGLASS IHQ=6 (and 7) in a deck: read, checked and run as the assumed-strain form.
 
 hand_check.k's two solid cubes (MAT_ELASTIC, MAT_181) get an *HOURGLASS card with
-IHQ 6, QM 1 and an initial velocity in an hourglass pattern (*INITIAL_VELOCITY_NODE,
-v_z = +-0.5 mm/ms by the xi-eta pattern of the nodes): ``check`` accepts it without an hourglass warning and the run uses it
-(no fallback message in messages.log, hourglass energy accounted, energy balance
-kept); an IHQ the solids do not have (9) still warns, naming the part and the form
-used instead.
+IHQ 6 (7), QM 1 and an initial velocity in an hourglass pattern
+(*INITIAL_VELOCITY_NODE, v_z = +-0.5 mm/ms by the xi-eta pattern of the nodes):
+``check`` accepts it without an hourglass warning and the run uses it (no fallback
+message in messages.log, hourglass energy accounted, energy balance kept); an IHQ
+the solids do not have (9) still warns, naming the part and the form used instead.
 """
 
 from __future__ import annotations
@@ -38,8 +38,9 @@ def deck_with_hourglass(tmp_path: Path, ihq: int) -> Path:
     return path
 
 
-def test_ihq6_deck_is_checked_and_run_without_fallback(tmp_path, capsys):
-    path = deck_with_hourglass(tmp_path, 6)
+@pytest.mark.parametrize("ihq", [6, 7])
+def test_ihq6_deck_is_checked_and_run_without_fallback(ihq, tmp_path, capsys):
+    path = deck_with_hourglass(tmp_path, ihq)
     code = cli_main(["check", str(path), "--json"])
     s = json.loads(capsys.readouterr().out)
     assert code == 0 and s["can_run"], s["problems"]
