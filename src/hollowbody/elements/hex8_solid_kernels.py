@@ -138,13 +138,15 @@ def _zero(fwork, e):
 
 @njit(cache=True, inline="always", fastmath={"contract"})
 def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, qd, qf,
-               hgstate, hgdisp, fwork, elastic, fr, qw):
+               hgstate, hgdisp, fwork, elastic, fr, qw, ax0, ax1, ax2, vol0):
     """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J).
 
     elastic = (G0, K) GPa, the law's small-strain shear and bulk moduli (IHQ 6: the
     shear modulus used is ``max(G0, 3/4 (modulus - K))``, the law's current tangent
     implied by its modulus ``K + 4G/3``); fr (3, 3), qw (4, 3) scratch; hgdisp
-    (e, 4, 3) mm hourglass displacements (IHQ 7 only).
+    (e, 4, 3) mm hourglass displacements (IHQ 7 only); ax0..ax2 mm, vol0 mm^3 the
+    element's reference half-lengths and volume (the stiffness is that of the
+    initial shape, in the current frame).
     """
     hourglass_hx(xe, hx)
     hourglass_rates(ve, lg, hx, qd)
@@ -152,13 +154,13 @@ def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, 
         g0, bulk = elastic
         g = max(g0, 0.75 * (modulus - bulk))
         nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
-        a0, a1, a2 = element_frame(xe, fr)
+        element_frame(xe, fr)
         if ihq == 7:
-            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
-                                     a0, a1, a2, qd, hgstate, hgdisp, e, qf, qw)
+            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
+                                     ax0, ax1, ax2, qd, hgstate, hgdisp, e, qf, qw)
         else:
-            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol, dt, rot, fr,
-                                         a0, a1, a2, qd, hgstate, e, qf)
+            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
+                                         ax0, ax1, ax2, qd, hgstate, e, qf)
     elif ihq >= 4:
         bb = 0.0
         for a in range(8):
@@ -195,7 +197,8 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
       t^{n+1/2}; dt ms;
     * geom = (conn (e, 8) int32, lfac (e,) length factor (1, or 3 for
       tetrahedra), volume0 (e,) mm^3, b0 (e, 8, 3) 1/mm reference uniform
-      gradients, bounds (nchunk + 1,) int64 element ranges of the chunks);
+      gradients, bounds (nchunk + 1,) int64 element ranges of the chunks, axes0
+      (e, 3) mm reference half-lengths for IHQ 6/7);
     * state = (alive (e,) bool, stress (e, 6) GPa in/out, volume (e,) mm^3 in
       (previous) / out (current), hgstate (e, 4, 3) kN generalised hourglass
       forces of the last call, hgdisp (e, 4, 3) mm hourglass displacements (IHQ 7;
@@ -216,7 +219,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
     def hex8_kernel(x, v, dt, geom, state, params, history, hg, out):
         if stamp < 0:  # never: the sources' digest only keys the on-disk cache
             return
-        conn, lfac, volume0, b0, bounds = geom
+        conn, lfac, volume0, b0, bounds, axes0 = geom
         alive, stress, volume, hgstate, hgdisp, fwork, dt_elem, c_elem = state
         consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
@@ -272,7 +275,8 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
                 dhg = 0.0
                 if qh > 0.0:
                     dhg = _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, bt, lg,
-                                     rot, hx, qd, qf, hgstate, hgdisp, fwork, elastic, fr, qw)
+                                     rot, hx, qd, qf, hgstate, hgdisp, fwork, elastic, fr, qw,
+                                     axes0[e, 0], axes0[e, 1], axes0[e, 2], volume0[e])
                 dw = -0.5 * dt * (w_old + _power(ve, fwork, e))
                 eint += dw - dhg
                 ehg += dhg

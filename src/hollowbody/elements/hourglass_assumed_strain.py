@@ -7,8 +7,9 @@ element bends like a rectangular element with incompatible modes: exact pure
 bending for a rectangular element at QH = 1, no shear locking and no
 volumetric locking as nu -> 1/2. The derivation is in docs/elements.md
 ("Assumed-strain hourglass stiffness"); the result, in the element's
-co-rotational frame ``e_0, e_1, e_2`` with half-lengths ``a_0, a_1, a_2``
-(columns of the Jacobian at the centre, Gram-Schmidt), for the local hourglass
+co-rotational frame ``e_0, e_1, e_2`` (columns of the current Jacobian at the
+centre, Gram-Schmidt) with the half-lengths ``a_0, a_1, a_2`` and volume V of the
+element's initial shape (norms of the initial Jacobian columns), for the local hourglass
 amplitudes ``q[i][alpha]`` (direction i, mode alpha = xi eta, eta zeta,
 zeta xi, xi eta zeta; the FB amplitudes of :mod:`~hollowbody.elements.hourglass`)::
 

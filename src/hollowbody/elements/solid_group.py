@@ -56,6 +56,16 @@ CHUNK = 256
 GATHER_MIN_ELEMENTS = 2048
 
 
+def reference_half_lengths(conn: np.ndarray, x0: np.ndarray) -> np.ndarray:
+    """(e, 3) mm norms of the centre Jacobian's columns (1/8) sum_a xi_k,a x_a."""
+    xi = np.array([[-1, 1, 1, -1, -1, 1, 1, -1], [-1, -1, 1, 1, -1, -1, 1, 1],
+                   [-1, -1, -1, -1, 1, 1, 1, 1]], dtype=np.float64)
+    if conn.shape[0] == 0:
+        return np.ones((0, 3))
+    j = np.einsum("ka,eai->eki", xi, x0[conn]) / 8.0
+    return np.ascontiguousarray(np.maximum(np.linalg.norm(j, axis=2), 1e-300))
+
+
 def _chunk_bounds(n: int, chunk: int = CHUNK) -> np.ndarray:
     nchunk = max(1, -(-n // chunk))
     return np.linspace(0, n, nchunk + 1).round().astype(np.int64)
@@ -134,6 +144,7 @@ class SolidGroupRuntime:
             float(ihq), float(hourglass.qm), float(hourglass.q1), float(hourglass.q2),
             g_hg, k_hg)
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
+        self._axes0 = reference_half_lengths(self._conn_k, x0)
         self._hgdisp = np.zeros((e if ihq == 7 else 1, 4, 3))  # hourglass displacements (mm)
 
         self._fwork = np.zeros((e, 8, 3))
@@ -164,7 +175,7 @@ class SolidGroupRuntime:
         # (contact zone, eigen-solver sweeps), a static split leaves threads idle
         old_chunk = numba.set_parallel_chunksize(1)
         # argument groups built per call, so a rebound attribute is always the one used
-        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds)
+        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds, self._axes0)
         state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
                  self._fwork, self.dt_elem, self._c)
         history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
