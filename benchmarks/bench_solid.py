@@ -8,7 +8,11 @@ and best block), plus
 the split between the element kernel and the two force-assembly variants
 (serial scatter, parallel node gather).
 
+The hourglass forms are compared on MAT_181 (IHQ 1, 4, 6, 7) and MAT_ELASTIC
+(IHQ 4, 6); ``--cases`` picks some of them by label.
+
 Usage: python benchmarks/bench_solid.py [--calls 50] [--repeats 9] [--threads 1 2]
+       [--cases "hex + MAT_181, IHQ=4" "hex + MAT_181, IHQ=6"]
 """
 
 from __future__ import annotations
@@ -97,6 +101,7 @@ def main() -> None:
     ap.add_argument("--calls", type=int, default=50)
     ap.add_argument("--repeats", type=int, default=9)
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--cases", nargs="+", default=None, help="case labels (default: all)")
     args = ap.parse_args()
     threads = [t for t in args.threads if t <= numba.config.NUMBA_NUM_THREADS]
     print(f"51 200 elements, {args.calls} calls x {args.repeats} repeats (median); "
@@ -104,9 +109,19 @@ def main() -> None:
     print(f"{'case':28s} {'thr':>3s} {'median':>7s} {'best':>7s} {'kernel':>7s} "
           f"{'scatter':>8s} {'gather':>7s}")
     results: dict[tuple[str, int], dict[str, float]] = {}
-    for kind, ihq, label in (("elastic", 1, "hex + MAT_ELASTIC, IHQ=1"),
-                             ("rubber181", 1, "hex + MAT_181, IHQ=1"),
-                             ("rubber181", 4, "hex + MAT_181, IHQ=4")):
+    cases = [("elastic", 1, "hex + MAT_ELASTIC, IHQ=1"),
+             ("elastic", 4, "hex + MAT_ELASTIC, IHQ=4"),
+             ("elastic", 6, "hex + MAT_ELASTIC, IHQ=6"),
+             ("rubber181", 1, "hex + MAT_181, IHQ=1"),
+             ("rubber181", 4, "hex + MAT_181, IHQ=4"),
+             ("rubber181", 6, "hex + MAT_181, IHQ=6"),
+             ("rubber181", 7, "hex + MAT_181, IHQ=7")]
+    if args.cases:
+        unknown = set(args.cases) - {c[2] for c in cases}
+        if unknown:
+            raise SystemExit(f"unknown cases: {sorted(unknown)}")
+        cases = [c for c in cases if c[2] in args.cases]
+    for kind, ihq, label in cases:
         for t in threads:
             r = bench(kind, ihq, t, args.calls, args.repeats)
             results[(label, t)] = r

@@ -13,7 +13,8 @@ arrays once and reduces its own energies and minimum time step, race-free):
    hourglass modulus and wave speed);
 4. bulk viscosity ``q = rho l (Q1 l trD^2 - Q2 c trD)`` for trD < 0 (LS-DYNA; l = V^(1/3));
 5. nodal forces ``f_a = -V (sigma - q I) b_a`` written to the element's own slots of
-   ``fwork`` (e, 8, 3), plus the hourglass forces (hourglass);
+   ``fwork`` (e, 8, 3), plus the hourglass forces (hourglass: FB viscous and
+   stiffness forms; hourglass_assumed_strain: IHQ 6);
 6. critical time step ``L_e / (Q + sqrt(Q^2 + c^2))`` (time_step).
 
 Energies (J) per chunk. The work of each element's forces over the step is
@@ -43,7 +44,7 @@ from types import ModuleType
 import numpy as np
 from numba import njit, prange
 
-from hollowbody.elements import hex8_kinematics, hourglass, time_step
+from hollowbody.elements import hex8_kinematics, hourglass, hourglass_assumed_strain, time_step
 from hollowbody.elements.hex8_kinematics import (
     hex8_max_face_area,
     hex8_volume_derivatives,
@@ -58,11 +59,18 @@ from hollowbody.elements.hourglass import (
     hourglass_stiffness,
     hourglass_viscous,
 )
+from hollowbody.elements.hourglass_assumed_strain import (
+    assumed_strain_hourglass,
+    assumed_strain_total,
+    element_frame,
+)
 from hollowbody.elements.kernel_cache import source_stamp
 from hollowbody.elements.time_step import critical_time_step
 
-#: Indices into the hourglass/bulk-viscosity parameter vector ``hg``.
-H_IHQ, H_QH, H_Q1, H_Q2 = range(4)
+#: Indices into the hourglass/bulk-viscosity parameter vector ``hg``: IHQ, QH, Q1, Q2,
+#: and the small-strain shear and bulk moduli (GPa) of the law (IHQ 6).
+H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_K = range(6)
+N_HG = 6
 
 _THIRD = 1.0 / 3.0
 
@@ -130,11 +138,30 @@ def _zero(fwork, e):
 
 @njit(cache=True, inline="always", fastmath={"contract"})
 def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, qd, qf,
-               hgstate, fwork):
-    """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J)."""
+               hgstate, hgdisp, fwork, elastic, fr, qw, ax0, ax1, ax2, vol0):
+    """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J).
+
+    elastic = (G0, K) GPa, the law's small-strain shear and bulk moduli (IHQ 6: the
+    shear modulus used is ``max(G0, 3/4 (modulus - K))``, the law's current tangent
+    implied by its modulus ``K + 4G/3``); fr (3, 3), qw (4, 3) scratch; hgdisp
+    (e, 4, 3) mm hourglass displacements (IHQ 7 only); ax0..ax2 mm, vol0 mm^3 the
+    element's reference half-lengths and volume (the stiffness is that of the
+    initial shape, in the current frame).
+    """
     hourglass_hx(xe, hx)
     hourglass_rates(ve, lg, hx, qd)
-    if ihq >= 4:
+    if ihq >= 6:
+        g0, bulk = elastic
+        g = max(g0, 0.75 * (modulus - bulk))
+        nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
+        element_frame(xe, fr)
+        if ihq == 7:
+            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
+                                     ax0, ax1, ax2, qd, hgstate, hgdisp, e, qf, qw)
+        else:
+            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
+                                         ax0, ax1, ax2, qd, hgstate, e, qf)
+    elif ihq >= 4:
         bb = 0.0
         for a in range(8):
             bb += b[a, 0] * b[a, 0] + b[a, 1] * b[a, 1] + b[a, 2] * b[a, 2]
@@ -170,29 +197,34 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
       t^{n+1/2}; dt ms;
     * geom = (conn (e, 8) int32, lfac (e,) length factor (1, or 3 for
       tetrahedra), volume0 (e,) mm^3, b0 (e, 8, 3) 1/mm reference uniform
-      gradients, bounds (nchunk + 1,) int64 element ranges of the chunks);
+      gradients, bounds (nchunk + 1,) int64 element ranges of the chunks, axes0
+      (e, 3) mm reference half-lengths for IHQ 6/7);
     * state = (alive (e,) bool, stress (e, 6) GPa in/out, volume (e,) mm^3 in
       (previous) / out (current), hgstate (e, 4, 3) kN generalised hourglass
-      forces of the last call, fwork (e, 8, 3) kN element forces (in: f^n,
+      forces of the last call, hgdisp (e, 4, 3) mm hourglass displacements (IHQ 7;
+      any (k, 4, 3) array otherwise), fwork (e, 8, 3) kN element forces (in: f^n,
       out: f^{n+1}), dt_elem (e,) ms out, c_elem (e,) mm/ms out);
     * params, history: the law's parameter and history tuples;
-    * hg (4,) float64: IHQ, QH, Q1, Q2; out (nchunk, 5) float64 (module docstring).
+    * hg (N_HG,) float64: IHQ (6 / 7: assumed strain, incremental / total;
+      4 and 5: FB stiffness; else viscous), QH, Q1, Q2, small-strain shear and
+      bulk moduli G0, K (GPa) of the law; out (nchunk, 5) float64 (module docstring).
     """
     key = law.__name__
     kernel = _KERNELS.get(key)
     if kernel is not None:
         return kernel
-    stamp = source_stamp(law, hex8_kinematics, hourglass, time_step)
+    stamp = source_stamp(law, hex8_kinematics, hourglass, hourglass_assumed_strain, time_step)
 
     @njit(cache=True, parallel=True, fastmath={"contract"})
     def hex8_kernel(x, v, dt, geom, state, params, history, hg, out):
         if stamp < 0:  # never: the sources' digest only keys the on-disk cache
             return
-        conn, lfac, volume0, b0, bounds = geom
-        alive, stress, volume, hgstate, fwork, dt_elem, c_elem = state
+        conn, lfac, volume0, b0, bounds, axes0 = geom
+        alive, stress, volume, hgstate, hgdisp, fwork, dt_elem, c_elem = state
         consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
         qh, q1, q2 = hg[H_QH], hg[H_Q1], hg[H_Q2]
+        elastic = (hg[H_G], hg[H_K])
         nchunk = bounds.shape[0] - 1
         for ck in prange(nchunk):
             xe = np.empty((8, 3))
@@ -205,6 +237,8 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
             hx = np.empty((4, 3))
             qd = np.empty((4, 3))
             qf = np.empty((4, 3))
+            fr = np.empty((3, 3))
+            qw = np.empty((4, 3))
             eint = 0.0
             ehg = 0.0
             dtmin = np.inf
@@ -241,7 +275,8 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
                 dhg = 0.0
                 if qh > 0.0:
                     dhg = _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, bt, lg,
-                                     rot, hx, qd, qf, hgstate, fwork)
+                                     rot, hx, qd, qf, hgstate, hgdisp, fwork, elastic, fr, qw,
+                                     axes0[e, 0], axes0[e, 1], axes0[e, 2], volume0[e])
                 dw = -0.5 * dt * (w_old + _power(ve, fwork, e))
                 eint += dw - dhg
                 ehg += dhg

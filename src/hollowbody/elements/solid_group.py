@@ -4,7 +4,10 @@
 time-varying arrays of the group (stress, volume, hourglass and material
 history, energies) and the work arrays of its kernels (allocated once).
 Formulation: 8-node one-point hexahedron (ELFORM 1) with Flanagan-Belytschko
-hourglass control and LS-DYNA bulk viscosity; degenerate wedges and
+hourglass control (viscous IHQ 1-3, stiffness IHQ 4-5), the Belytschko-Bindeman
+assumed-strain stiffness (IHQ 6 incremental, IHQ 7 total; IHQ 8 and above run as
+IHQ 6 with a warning)
+and LS-DYNA bulk viscosity; degenerate wedges and
 tetrahedra run through the same kernel (see docs/elements.md).
 Materials: the laws of :data:`hollowbody.materials.solid_laws.SOLID_LAWS`
 (*MAT_ELASTIC ``"elastic"``, *MAT_SIMPLIFIED_RUBBER ``"rubber181"``); one
@@ -32,7 +35,16 @@ from hollowbody.elements.hex8_kinematics import (
     canonical_connectivity,
     hex8_gradients,
 )
-from hollowbody.elements.hex8_solid_kernels import make_hex8_kernel
+from hollowbody.elements.hex8_solid_kernels import (
+    H_G,
+    H_IHQ,
+    H_K,
+    H_Q1,
+    H_Q2,
+    H_QH,
+    N_HG,
+    make_hex8_kernel,
+)
 from hollowbody.elements.time_step import element_time_steps
 from hollowbody.errors import DeckError
 from hollowbody.materials.solid_laws import HISTORY_FIELDS, SOLID_LAWS
@@ -42,6 +54,16 @@ from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 CHUNK = 256
 #: Groups at least this large use the parallel node gather (when > 1 thread).
 GATHER_MIN_ELEMENTS = 2048
+
+
+def reference_half_lengths(conn: np.ndarray, x0: np.ndarray) -> np.ndarray:
+    """(e, 3) mm norms of the centre Jacobian's columns (1/8) sum_a xi_k,a x_a."""
+    xi = np.array([[-1, 1, 1, -1, -1, 1, 1, -1], [-1, -1, 1, 1, -1, -1, 1, 1],
+                   [-1, -1, -1, -1, 1, 1, 1, 1]], dtype=np.float64)
+    if conn.shape[0] == 0:
+        return np.ones((0, 3))
+    j = np.einsum("ka,eai->eki", xi, x0[conn]) / 8.0
+    return np.ascontiguousarray(np.maximum(np.linalg.norm(j, axis=2), 1e-300))
 
 
 def _chunk_bounds(n: int, chunk: int = CHUNK) -> np.ndarray:
@@ -68,7 +90,7 @@ class SolidGroupRuntime:
     #: arrays are restored in place, floats by assignment. ``_fwork`` holds the
     #: element forces f^n, read by the next call (energy of the step).
     STATE_FIELDS: tuple[str, ...] = (
-        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_fwork",
+        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_fwork",
         "internal_energy", "hourglass_energy") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
@@ -110,15 +132,20 @@ class SolidGroupRuntime:
         self._kernel = make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
-        if ihq > 5:
+        if ihq > 7:
             warnings.warn(f"part {self.pid}: hourglass type IHQ={ihq} is not available for "
-                          "solids; the Flanagan-Belytschko stiffness form (IHQ=4) is used "
-                          f"with QM={hourglass.qm}", UserWarning, stacklevel=2)
-            ihq = 4
+                          "solids; the assumed-strain stiffness form (IHQ=6, incremental) "
+                          f"is used with QM={hourglass.qm}", UserWarning, stacklevel=2)
+            ihq = 6
         self.ihq = ihq
-        self._hg = np.array([float(ihq), float(hourglass.qm), float(hourglass.q1),
-                             float(hourglass.q2)])
+        g_hg, k_hg = law.solid_hourglass_moduli(self._params)
+        self._hg = np.zeros(N_HG)
+        self._hg[[H_IHQ, H_QH, H_Q1, H_Q2, H_G, H_K]] = (
+            float(ihq), float(hourglass.qm), float(hourglass.q1), float(hourglass.q2),
+            g_hg, k_hg)
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
+        self._axes0 = reference_half_lengths(self._conn_k, x0)
+        self._hgdisp = np.zeros((e if ihq == 7 else 1, 4, 3))  # hourglass displacements (mm)
 
         self._fwork = np.zeros((e, 8, 3))
         self.dt_elem = element_time_steps(self._conn_k, x0, c0, self.shape) if e else \
@@ -148,9 +175,9 @@ class SolidGroupRuntime:
         # (contact zone, eigen-solver sweeps), a static split leaves threads idle
         old_chunk = numba.set_parallel_chunksize(1)
         # argument groups built per call, so a rebound attribute is always the one used
-        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds)
-        state = (self.alive, self.stress, self.volume, self._hgstate, self._fwork,
-                 self.dt_elem, self._c)
+        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds, self._axes0)
+        state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
+                 self._fwork, self.dt_elem, self._c)
         history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
         self._kernel(x, v, float(dt), geom, state, self._params, history, self._hg, out)
         numba.set_parallel_chunksize(old_chunk)
@@ -173,6 +200,8 @@ class SolidGroupRuntime:
         self.alive[idx] = False
         self.stress[idx] = 0.0
         self._hgstate[idx] = 0.0
+        if self._hgdisp.shape[0] == self.n_elem:
+            self._hgdisp[idx] = 0.0
         self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), idx)
         self.dt_elem[idx] = np.inf
 

@@ -10,8 +10,8 @@ Parameters are packed into a float64 vector (indices ``P_*``) so the element
 kernels take plain arrays.
 
 Solid law interface (see :mod:`hollowbody.materials.solid_laws`):
-:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_history`,
-:func:`solid_erode` and the kernel :func:`solid_update`. No history.
+:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_hourglass_moduli`,
+:func:`solid_history`, :func:`solid_erode` and the kernel :func:`solid_update`. No history.
 """
 
 from __future__ import annotations
@@ -97,6 +97,13 @@ def solid_params(mat: MaterialDef, curves: dict[int, Curve]) -> tuple[np.ndarray
 def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
     """Initial dilatational wave speed (mm/ms) sqrt((K + 4G/3) / rho)."""
     return float(params[0][P_C])
+
+
+def solid_hourglass_moduli(params: tuple[np.ndarray, ...]) -> tuple[float, float]:
+    """Shear and bulk moduli (GPa) of the assumed-strain hourglass stiffness (IHQ 6),
+    from the card's E and PR."""
+    mp = params[0]
+    return float(mp[P_MU]), float(mp[P_BULK])
 
 
 def solid_history(params: tuple[np.ndarray, ...], n_elem: int) -> dict[str, np.ndarray]:

@@ -29,8 +29,8 @@ with ``G_t = max(G0, g(l_i))`` the larger of the initial shear modulus
 rubber keeps a stable step. Units: GPa, kg/mm^3, mm/ms.
 
 Solid law interface (see :mod:`hollowbody.materials.solid_laws`):
-:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_history`,
-:func:`solid_erode` and the kernel :func:`solid_update`. History: the
+:func:`solid_params`, :func:`solid_wave_speed0`, :func:`solid_hourglass_moduli`,
+:func:`solid_history`, :func:`solid_erode` and the kernel :func:`solid_update`. History: the
 frictional stress ``_fric`` (e, 6) GPa ((1, 6) when friction is off) and the
 eigenvectors ``_eig`` (e, 3, 3) of F F^T of the last call (warm start of the
 eigen-solver).
@@ -211,6 +211,13 @@ def solid_params(mat: MaterialDef, curves: dict[int, Curve]) -> tuple[np.ndarray
 def solid_wave_speed0(params: tuple[np.ndarray, ...]) -> float:
     """Initial dilatational wave speed (mm/ms), :func:`rubber_wave_speed0`."""
     return rubber_wave_speed0(params[0])
+
+
+def solid_hourglass_moduli(params: tuple[np.ndarray, ...]) -> tuple[float, float]:
+    """Small-strain shear and bulk moduli (GPa) of the assumed-strain hourglass
+    stiffness (IHQ 6): ``G0 = E0 / 3`` from the curve's initial slope and KM. (The
+    element uses the larger of G0 and the current tangent, see hex8_solid_kernels.)"""
+    return float(params[0][P_G0]), float(params[0][P_BULK])
 
 
 def friction_on(mp: np.ndarray) -> bool:

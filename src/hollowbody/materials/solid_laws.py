@@ -6,6 +6,8 @@ A solid law is one module that provides
 * ``solid_params(mat, curves) -> tuple[np.ndarray, ...]``: the parameters
   packed for the kernel, validated (``DeckError`` naming file, line and keyword);
 * ``solid_wave_speed0(params) -> float``: initial wave speed, mm/ms;
+* ``solid_hourglass_moduli(params) -> (G0, K)``: small-strain shear and bulk
+  moduli (GPa), for the assumed-strain hourglass stiffness (IHQ 6);
 * ``HISTORY_FIELDS`` and ``solid_history(params, n_elem) -> dict[str, ndarray]``:
   the per-element history arrays by name, in the order of the kernel's history
   tuple (the group runtime stores each one under its name and lists it in its

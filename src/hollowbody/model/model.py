@@ -91,7 +91,8 @@ class SectionDef:
 class HourglassDef:
     """*HOURGLASS card (or the *CONTROL_HOURGLASS default with hgid 0).
 
-    ihq: 1-3 viscous, 4-5 stiffness (Flanagan-Belytschko); qm: coefficient
+    ihq: 1-3 viscous, 4-5 stiffness (Flanagan-Belytschko), 6 assumed-strain stiffness
+    (Belytschko-Bindeman; solids); qm: coefficient
     (QH, default 0.1); q1, q2: bulk viscosity coefficients (defaults 1.5, 0.06).
     """
 

@@ -85,6 +85,8 @@ SOLIDS = {
         MaterialDef(2, "rubber181", 1e-6, {"KM": 0.1, "MU": 0.1, "G": 0.001, "SIGF": 0.0002,
                                            "SGL": 1.0, "SW": 1.0, "ST": 1.0, "LCID": 7}),
         {7: Curve(7, STRAIN, MPA * 1e-3)}, 4),
+    "elastic-ihq6": (MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.45}), {}, 6),
+    "elastic-ihq7": (MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.45}), {}, 7),
 }
 
 

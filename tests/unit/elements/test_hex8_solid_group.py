@@ -93,7 +93,7 @@ def test_rubber_stress_follows_rotation():
     np.testing.assert_allclose(rt.stress[0], expected, atol=1e-12 * np.abs(s).max())
 
 
-@pytest.mark.parametrize("ihq", [1, 4])
+@pytest.mark.parametrize("ihq", [1, 4, 6])
 def test_pure_hourglass_mode_gives_hourglass_force_but_no_strain(ihq):
     x0, conn = block_mesh((1, 1, 1), (2.0, 2.0, 2.0))
     rt = runtime(x0, conn, elastic(), ihq=ihq, qm=0.1)

@@ -185,7 +185,8 @@ def test_viscous_hourglass_energy_non_negative():
     assert np.all(history >= 0.0)
 
 
-@pytest.mark.parametrize("case", ["elastic-viscous", "elastic-stiffness", "rubber"])
+@pytest.mark.parametrize("case", ["elastic-viscous", "elastic-stiffness", "elastic-assumed-strain",
+                                  "rubber", "rubber-assumed-strain"])
 def test_energy_accounting_matches_central_difference_work(case):
     """Internal + hourglass energy is the scheme's own work of the element forces.
 
@@ -194,15 +195,16 @@ def test_energy_accounting_matches_central_difference_work(case):
     """
     x0, conn = block_mesh((3, 3, 3), (3.0, 3.0, 3.0))
     x0 = distort(x0, 0.2, seed=6)
-    if case == "rubber":
+    if case.startswith("rubber"):
         mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 0.005, "MU": 0.2, "G": 1e-4,
                                                  "SIGF": 1e-5, "SGL": 1.0, "SW": 1.0,
                                                  "ST": 1.0, "LCID": 4})
         curves = {4: Curve(4, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
-        hg = {"ihq": 1, "qm": 0.1}
+        hg = {"ihq": 6, "qm": 1.0} if case.endswith("assumed-strain") else {"ihq": 1, "qm": 0.1}
     else:
         mat = MaterialDef(1, "elastic", 1e-6, {"E": 0.01, "PR": 0.3})
-        curves, hg = {}, {"ihq": 2 if case == "elastic-viscous" else 5, "qm": 0.1}
+        ihq = {"elastic-viscous": 2, "elastic-stiffness": 5, "elastic-assumed-strain": 6}[case]
+        curves, hg = {}, {"ihq": ihq, "qm": 1.0 if ihq == 6 else 0.1}
     rng = np.random.default_rng(3)
     v0 = rng.normal(scale=0.2, size=x0.shape)
     # the step: half the critical step at rest (a constant step, the invariant is exact)

@@ -70,7 +70,7 @@ def test_volume_of_patch(kind):
     assert rt.volume0.sum() == pytest.approx(27.0, rel=1e-13)
 
 
-@pytest.mark.parametrize("ihq", [1, 4])
+@pytest.mark.parametrize("ihq", [1, 4, 6])
 @pytest.mark.parametrize("kind", ["hex", "wedge", "tet"])
 def test_elastic_patch_linear_velocity(kind, ihq):
     x0, conn = patch(kind)
