@@ -109,9 +109,11 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     ``held`` but not same (the node moved on to another segment, whose gap may
     differ from the last one's by a fold's angle): ``F = f_prev - k dn`` with
     dn = v_n dt (mm) the normal relative motion of this step (negative when
-    approaching). Both bounded, ``0 <= F <= k gap``. A fresh contact:
-    ``F = k gap`` (an initial penetration between surfaces not joined by the
-    mesh is pushed apart).
+    approaching). A fresh contact: ``F = k max(0, -dn)``, the penetration made
+    by this step's approach (a node arriving through the face within one step
+    has ``gap <= -dn``: ``F = k gap``). Always ``0 <= F <= k gap``. The caller
+    passes ``dn = -gap`` at the first call of a run, so that initial
+    penetrations between surfaces not joined by the mesh push apart.
 
     Why: with the total form ``k gap`` every jump of the gap at a fixed position
     (a change of segment across a fold, a rise of k) is a jump of the force,
@@ -120,13 +122,19 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     40 km/h: -23 J of 309 J). Incremental, k may change from cycle to cycle
     (the stability cap follows the springs on each node) without a force jump;
     a drop of k lowers the bound ``k gap`` (dissipative, never generative).
+    A fresh contact found deep -- a node entering a segment's contact zone
+    sideways, over its edge, in a fold -- is held where it is: with ``k gap``
+    its spring starts with ``k gap^2 / 2`` of energy from nothing, which it
+    gives to the node on the way out (circular aluminium tube D/t 30, 40 % of
+    its crush: 754 fresh self-contacts stored 384 J so, contact energy -316 J,
+    -18 % of the total).
     """
     if same:
         f = f_prev + k * (gap - gap_prev)
     elif held:
         f = f_prev - k * dn
     else:
-        return k * gap
+        f = -k * dn
     top = k * gap
     if f > top:
         return top
