@@ -38,7 +38,7 @@ from __future__ import annotations
 from numba import njit, prange
 
 from hollowbody.contact.geometry import project_corners
-from hollowbody.contact.law import ENTRY_FRACTION, pushed_through, release_depth
+from hollowbody.contact.law import ENTRY_FRACTION, HOLD_TOL, pushed_through, release_depth
 
 #: Nodes per parallel work item: array arguments cost an incref/decref per call,
 #: so kernels are called per chunk, not per item; small enough that the nodes in
@@ -74,6 +74,10 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
         brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
+        held = False
+        hgap = hrel = 0.0
+        hnx = hny = hnz = 0.0
+        hw0 = hw1 = hw2 = hw3 = 0.0
         # the segment in contact last cycle first (when listed): its distance then
         # lets the bound below skip the projection onto most other candidates
         prev = oseg[i]
@@ -123,6 +127,16 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
                 px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
                 x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd, xi0, eta0)
+            over_edge = False
+            if k < 0 and ok and not inside:
+                # just off last cycle's segment: over a convex edge of the surface a
+                # node behind it projects onto neither face; it stays in contact with
+                # that segment (taken only if no segment has it inside)
+                ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
+                    px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
+                    x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd, xi0,
+                    eta0, HOLD_TOL)
+                over_edge = True
             if not (ok and inside):
                 continue
             d = (px - qx) * nx + (py - qy) * ny + (pz - qz) * nz
@@ -149,6 +163,18 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 if d >= reach or d <= -(rel + ext):
                     continue
                 gap = reach - d
+            if over_edge:
+                held = True
+                hgap = gap
+                hrel = reach + rel
+                hnx = nx
+                hny = ny
+                hnz = nz
+                hw0 = w0
+                hw1 = w1
+                hw2 = w2
+                hw3 = w3
+                continue
             if ad < best_ad or (ad == best_ad and s < best):  # ties: lowest segment
                 best_ad = ad
                 best = s
@@ -161,6 +187,17 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
+        if best < 0 and held:
+            best = prev
+            bgap = hgap
+            brel = hrel
+            bnx = hnx
+            bny = hny
+            bnz = hnz
+            bw0 = hw0
+            bw1 = hw1
+            bw2 = hw2
+            bw3 = hw3
         # a fresh contact starts the stiffening from its first gap (no increment)
         gold[i] = ogap[i] if prev >= 0 else bgap
         sold[i] = prev

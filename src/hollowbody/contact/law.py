@@ -43,6 +43,14 @@ DT_FLOOR = 0.05
 #: is a pass-through (a node caught deep at once -- sliding over an edge, a
 #: fold -- was never on the outer side).
 ENTRY_FRACTION = 0.5
+#: "Inside" tolerance (natural coordinates of a quad, barycentric weights of a
+#: triangle) within which a node keeps the segment it was in contact with last
+#: cycle when no segment has it inside (:mod:`hollowbody.contact.detect`): behind
+#: a convex edge of the surface a node projects onto neither face. Dropped and
+#: found again it would start as a fresh contact (:func:`spring_force`) and lose
+#: its force. 0.2 is 0.5 mm on a 5 mm quad: a node 1 mm behind the middle of a
+#: 50-degree edge.
+HOLD_TOL = 0.2
 #: Loose "inside" test (smallest shape function) for the pass-through check on
 #: the previous segment: a node pushed through near an edge still counts.
 _THRU_MIN_WEIGHT = -0.1

@@ -227,8 +227,9 @@ def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, ml
     (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`), the cap of every spring
     (:data:`~hollowbody.contact.law.CAP_LIMIT`), 1 at the first call of a run
     (a fresh contact's whole gap counts as its approach: initial penetrations
-    push apart; 0 later: a fresh contact gets only the approach of its step). mloc (L,) kg nodal masses
-    of the rows (rigid-body nodes: the body's mass per node; fixed nodes: inf);
+    push apart; 0 later: a fresh contact gets only the approach of its step).
+    mloc (L,) kg nodal masses of the rows (rigid-body nodes: the body's mass
+    per node; fixed nodes: inf);
     wsum (L,) summed weights of this cycle's springs per row
     (:func:`scatter_weights`); imm (L,) int8 1 for rows that no contact force
     can move (rigid-body and fixed nodes): a pair of such rows only gets the
