@@ -18,7 +18,11 @@ and reach = (t_node + t_seg) / 2:
   thickness, else a node released inside the shell's own contact thickness
   would at once be caught from the far side and pushed through.
 
-Ties go to the lowest segment number. Pass-through detection: a node that
+Ties go to the lowest segment number. A node that projects onto no
+candidate but lies within ``HOLD_TOL`` (natural coordinates) of the segment it
+was in contact with last cycle keeps that segment: behind a convex edge of the
+surface it projects onto neither face (see
+:data:`~hollowbody.contact.law.HOLD_TOL`). Pass-through detection: a node that
 was in contact with segment s in the previous cycle, had entered that
 contact from outside (first gap at most ``ENTRY_FRACTION`` of the
 penetration at release) and is now behind s (on the side opposite to the one
