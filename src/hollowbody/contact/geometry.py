@@ -210,9 +210,9 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
     kernel starts a node's last contact segment from its last contact point).
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3): ok False
-    when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 +
-    tol (default INSIDE_TOL) and the iteration converged (else xp is not the foot of the
-    normal through p, and p may be far from the segment although (p - xp) . n
+    when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 + tol
+    (default INSIDE_TOL) and the iteration converged (else xp is not the foot of
+    the normal through p, and p may be far from the segment although (p - xp) . n
     is small: a folded wall segment); xp the point x(xi, eta); n the unit normal
     there; w the bilinear shape functions (sum 1).
     """
