@@ -18,7 +18,11 @@ and reach = (t_node + t_seg) / 2:
   thickness, else a node released inside the shell's own contact thickness
   would at once be caught from the far side and pushed through.
 
-Ties go to the lowest segment number. Pass-through detection: a node that
+Ties go to the lowest segment number. A node that projects onto no
+candidate but lies within ``HOLD_TOL`` (natural coordinates) of the segment it
+was in contact with last cycle keeps that segment: behind a convex edge of the
+surface it projects onto neither face (see
+:data:`~hollowbody.contact.law.HOLD_TOL`). Pass-through detection: a node that
 was in contact with segment s in the previous cycle, had entered that
 contact from outside (first gap at most ``ENTRY_FRACTION`` of the
 penetration at release) and is now behind s (on the side opposite to the one
@@ -38,7 +42,7 @@ from __future__ import annotations
 from numba import njit, prange
 
 from hollowbody.contact.geometry import project_corners
-from hollowbody.contact.law import ENTRY_FRACTION, pushed_through, release_depth
+from hollowbody.contact.law import ENTRY_FRACTION, HOLD_TOL, pushed_through, release_depth
 
 #: Nodes per parallel work item: array arguments cost an incref/decref per call,
 #: so kernels are called per chunk, not per item; small enough that the nodes in
@@ -74,6 +78,10 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
         brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
+        held = False
+        hgap = hrel = 0.0
+        hnx = hny = hnz = 0.0
+        hw0 = hw1 = hw2 = hw3 = 0.0
         # the segment in contact last cycle first (when listed): its distance then
         # lets the bound below skip the projection onto most other candidates
         prev = oseg[i]
@@ -123,6 +131,16 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
                 px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
                 x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd, xi0, eta0)
+            over_edge = False
+            if k < 0 and ok and not inside:
+                # just off last cycle's segment: over a convex edge of the surface a
+                # node behind it projects onto neither face; it stays in contact with
+                # that segment (taken only if no segment has it inside)
+                ok, inside, qx, qy, qz, nx, ny, nz, w0, w1, w2, w3 = project_corners(
+                    px, py, pz, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2],
+                    x[c, 0], x[c, 1], x[c, 2], x[dd, 0], x[dd, 1], x[dd, 2], c == dd, xi0,
+                    eta0, HOLD_TOL)
+                over_edge = True
             if not (ok and inside):
                 continue
             d = (px - qx) * nx + (py - qy) * ny + (pz - qz) * nz
@@ -149,6 +167,18 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 if d >= reach or d <= -(rel + ext):
                     continue
                 gap = reach - d
+            if over_edge:
+                held = True
+                hgap = gap
+                hrel = reach + rel
+                hnx = nx
+                hny = ny
+                hnz = nz
+                hw0 = w0
+                hw1 = w1
+                hw2 = w2
+                hw3 = w3
+                continue
             if ad < best_ad or (ad == best_ad and s < best):  # ties: lowest segment
                 best_ad = ad
                 best = s
@@ -161,6 +191,17 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
+        if best < 0 and held:
+            best = prev
+            bgap = hgap
+            brel = hrel
+            bnx = hnx
+            bny = hny
+            bnz = hnz
+            bw0 = hw0
+            bw1 = hw1
+            bw2 = hw2
+            bw3 = hw3
         # a fresh contact starts the stiffening from its first gap (no increment)
         gold[i] = ogap[i] if prev >= 0 else bgap
         sold[i] = prev

@@ -79,11 +79,11 @@ def tangents(xs: np.ndarray, u: float, v: float, tri: bool, g: np.ndarray) -> No
 
 
 @njit(cache=True, inline="always")
-def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
+def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz, tol=INSIDE_TOL):
     """Project point p onto triangle abc.
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, wa, wb, wc): ok False for
-    a degenerate triangle; inside when all barycentric weights >= -INSIDE_TOL;
+    a degenerate triangle; inside when all barycentric weights >= -tol;
     xp the projection onto the triangle's plane; n the unit normal
     ((b - a) x (c - a)); w the barycentric weights (sum 1).
     """
@@ -114,7 +114,7 @@ def project_triangle(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):
     s = (d11 * d20 - d01 * d21) / den
     t = (d00 * d21 - d01 * d20) / den
     wa = 1.0 - s - t
-    inside = wa >= -INSIDE_TOL and s >= -INSIDE_TOL and t >= -INSIDE_TOL
+    inside = wa >= -tol and s >= -tol and t >= -tol
     return (True, inside, ax + rx, ay + ry, az + rz, nx, ny, nz, wa, s, t)
 
 
@@ -204,15 +204,15 @@ def _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
 
 @njit(cache=True)
 def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0=0.0,
-                 eta0=0.0):
+                 eta0=0.0, tol=INSIDE_TOL):
     """Project point p onto the bilinear quadrilateral with corners 0..3 (scalars, mm),
     Newton from natural coordinates (xi0, eta0) (default the centre; the contact
     kernel starts a node's last contact segment from its last contact point).
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3): ok False
-    when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 +
-    INSIDE_TOL and the iteration converged (else xp is not the foot of the
-    normal through p, and p may be far from the segment although (p - xp) . n
+    when the Newton iteration breaks down; inside when |xi|, |eta| <= 1 + tol
+    (default INSIDE_TOL) and the iteration converged (else xp is not the foot of
+    the normal through p, and p may be far from the segment although (p - xp) . n
     is small: a folded wall segment); xp the point x(xi, eta); n the unit normal
     there; w the bilinear shape functions (sum 1).
     """
@@ -234,7 +234,7 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
     nn = math.sqrt(nx * nx + ny * ny + nz * nz)
     if not nn > 0.0:
         return False, False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    lim = 1.0 + INSIDE_TOL
+    lim = 1.0 + tol
     # not converged (a strongly warped, folded segment): xp is no foot point, and
     # d = (p - xp) . n is not the distance (it can be small for a node far away)
     inside = abs(xi) <= lim and abs(eta) <= lim and step < _CONVERGED
@@ -250,16 +250,18 @@ def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
 
 @njit(cache=True, inline="always")
 def project_corners(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, tri, xi0=0.0,
-                    eta0=0.0):
-    """Project p onto a segment given by its corner coordinates (tri: N4 == N3).
+                    eta0=0.0, tol=INSIDE_TOL):
+    """Project p onto a segment given by its corner coordinates (tri: N4 == N3);
+    ``tol``: the "inside" tolerance (barycentric weights, natural coordinates).
 
     Returns (ok, inside, xpx, xpy, xpz, nx, ny, nz, w0, w1, w2, w3).
     """
     if tri:
         ok, inside, qx, qy, qz, nx, ny, nz, wa, wb, wc = project_triangle(
-            px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2)
+            px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, tol)
         return ok, inside, qx, qy, qz, nx, ny, nz, wa, wb, wc, 0.0
-    return project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0, eta0)
+    return project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0, eta0,
+                        tol)
 
 
 @njit(cache=True)

@@ -43,6 +43,14 @@ DT_FLOOR = 0.05
 #: is a pass-through (a node caught deep at once -- sliding over an edge, a
 #: fold -- was never on the outer side).
 ENTRY_FRACTION = 0.5
+#: "Inside" tolerance (natural coordinates of a quad, barycentric weights of a
+#: triangle) within which a node keeps the segment it was in contact with last
+#: cycle when no segment has it inside (:mod:`hollowbody.contact.detect`): behind
+#: a convex edge of the surface a node projects onto neither face. Dropped and
+#: found again it would start as a fresh contact (:func:`spring_force`) and lose
+#: its force. 0.2 is 0.5 mm on a 5 mm quad: a node 1 mm behind the middle of a
+#: 50-degree edge.
+HOLD_TOL = 0.2
 #: Loose "inside" test (smallest shape function) for the pass-through check on
 #: the previous segment: a node pushed through near an edge still counts.
 _THRU_MIN_WEIGHT = -0.1
@@ -109,9 +117,11 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     ``held`` but not same (the node moved on to another segment, whose gap may
     differ from the last one's by a fold's angle): ``F = f_prev - k dn`` with
     dn = v_n dt (mm) the normal relative motion of this step (negative when
-    approaching). Both bounded, ``0 <= F <= k gap``. A fresh contact:
-    ``F = k gap`` (an initial penetration between surfaces not joined by the
-    mesh is pushed apart).
+    approaching). A fresh contact: ``F = k max(0, -dn)``, the penetration made
+    by this step's approach (a node arriving through the face within one step
+    has ``gap <= -dn``: ``F = k gap``). Always ``0 <= F <= k gap``. The caller
+    passes ``dn = -gap`` at the first call of a run, so that initial
+    penetrations between surfaces not joined by the mesh push apart.
 
     Why: with the total form ``k gap`` every jump of the gap at a fixed position
     (a change of segment across a fold, a rise of k) is a jump of the force,
@@ -120,13 +130,19 @@ def spring_force(gap, gap_prev, f_prev, k, dn, same, held):
     40 km/h: -23 J of 309 J). Incremental, k may change from cycle to cycle
     (the stability cap follows the springs on each node) without a force jump;
     a drop of k lowers the bound ``k gap`` (dissipative, never generative).
+    A fresh contact found deep -- a node entering a segment's contact zone
+    sideways, over its edge, in a fold -- is held where it is: with ``k gap``
+    its spring starts with ``k gap^2 / 2`` of energy from nothing, which it
+    gives to the node on the way out (axial crush of the circular aluminium
+    tube D/t 30, shell drilling factor 0: 2749 fresh self-contacts created
+    651 J so, contact energy -549 J, -17.5 % of the total; now +116 J).
     """
     if same:
         f = f_prev + k * (gap - gap_prev)
     elif held:
         f = f_prev - k * dn
     else:
-        return k * gap
+        f = -k * dn
     top = k * gap
     if f > top:
         return top

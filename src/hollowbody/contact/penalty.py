@@ -18,8 +18,9 @@ Normal force: the spring force grows with the penetration *increment*
 (:func:`~hollowbody.contact.law.spring_force`): on the same segment as last
 cycle by k (g - g_prev); a node that moves on to another segment keeps its
 force and adds the approach of this step; a fresh contact starts from the
-approach of this step (a node found already deep -- sliding over a fold,
-initially penetrating -- is held, not fired out); always ``0 <= F <= k g``.
+approach of this step (a node found already deep -- entering sideways over a
+segment's edge in a fold -- is held, not fired out; initial penetrations at
+the first call push apart); always ``0 <= F <= k g``.
 A force law in the total form ``k g`` makes energy out of every such jump.
 Deeper than ``g1 = stiffen * G`` (G = reach + release depth, the penetration
 at which the node would be released) the tangent stiffness rises
@@ -147,7 +148,10 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
             kd = deep_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, deep, dts)
         fn, fdn = penalty_force(bgap, gprev, ofd[i], k, kd, g1, 0.5 * (brel - g1))
         ofd[i] = fdn
-        fb = spring_force(bgap, gprev, ofn[i], k, vn * dt, prev == s, prev >= 0)
+        # the first call of a run: an initial penetration counts as this step's
+        # approach (it pushes apart); later a fresh contact gets only its approach
+        dn = -bgap if params[11] > 0.0 and prev < 0 else vn * dt
+        fb = spring_force(bgap, gprev, ofn[i], k, dn, prev == s, prev >= 0)
         fn += fb - k * bgap
         ofn[i] = fb
         # penetration not pushed back from: the node is released that much deeper
@@ -217,12 +221,15 @@ def force_pass(act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, params, ml
     disables the mass-based stiffness). nodes (ns,) int32 rows of v; n_k (ns,)
     kN/mm node stiffness (SOFT=0, scale factor applied, 0 = unknown); n_mass
     (ns,) kg (inf for rigid-body nodes); seg (S, 4) int32; s_k, s_mass (S,) as
-    for nodes. params (11,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc,
+    for nodes. params (12,) float64: slsfac, soft (0/1), sofscl, fs, fd, dc,
     vdc, friction on, start of the stiffened zone (fraction of the penetration
     at release), its stability limit of all springs on a node
     (:data:`~hollowbody.contact.law.STIFFEN_LIMIT`), the cap of every spring
-    (:data:`~hollowbody.contact.law.CAP_LIMIT`). mloc (L,) kg nodal masses
-    of the rows (rigid-body nodes: the body's mass per node; fixed nodes: inf);
+    (:data:`~hollowbody.contact.law.CAP_LIMIT`), 1 at the first call of a run
+    (a fresh contact's whole gap counts as its approach: initial penetrations
+    push apart; 0 later: a fresh contact gets only the approach of its step).
+    mloc (L,) kg nodal masses of the rows (rigid-body nodes: the body's mass
+    per node; fixed nodes: inf);
     wsum (L,) summed weights of this cycle's springs per row
     (:func:`scatter_weights`); imm (L,) int8 1 for rows that no contact force
     can move (rigid-body and fixed nodes): a pair of such rows only gets the

@@ -235,7 +235,7 @@ class ContactRuntime:
                                  cdef.sofscl, cdef.fs, cdef.fd, cdef.dc, cdef.vdc,
                                  1.0 if (cdef.fs > 0.0 or cdef.fd > 0.0) else 0.0,
                                  STIFFEN_FRACTION, STIFFEN_LIMIT,
-                                 CAP_LIMIT])
+                                 CAP_LIMIT, 0.0])
         self._node_ids = np.asarray(model.node_ids, dtype=np.int64)
         ms_cache: dict[float, Surface] = {}
 
@@ -533,6 +533,8 @@ class ContactRuntime:
             self._refilter = True
         if self._refilter or mdn2 > (_RESORT_FRACTION * self._near_margin) ** 2:
             self._filter()
+        # first call: initial penetrations push apart (spring_force)
+        self._params[11] = 1.0 if self._first else 0.0
         self._first = False
         self._fl[:] = 0.0
         self._wsum[:] = 0.0

@@ -253,11 +253,14 @@ def test_projected_ties_leave_the_model_unchanged(tmp_path, capture):
     assert "moved onto the surface by up to 0.05 mm" in (tmp_path / "messages.log").read_text()
     x, v = capture[-1]["x"], capture[-1]["v"]
     # the same run when build_ties still wrote the moved coordinates into model.node_x0
-    # (re-recorded with the incremental contact spring, which moved the 8th digit)
-    assert x.sum() == pytest.approx(36269.15380304933, rel=1e-12)
-    assert x[slaves, 0].mean() == pytest.approx(50.07481068040542, rel=1e-12)
-    assert v.sum() == pytest.approx(483.4360919799391, rel=1e-12)
-    assert np.abs(v).sum() == pytest.approx(517.8582783141406, rel=1e-12)
-    assert v[slaves, 0].sum() == pytest.approx(10.53539477997136, rel=1e-12)
+    # (re-recorded with the incremental contact spring, which moved the 8th digit, and
+    # with a fresh contact's force from its approach k max(0, -v_n dt) instead of k g
+    # after the first call, which moved the 11th digit of v and the 6th of the contact
+    # energy: v.sum() 483.4360919799391, contact 5.49339925e-09 J before)
+    assert x.sum() == pytest.approx(36269.153803049456, rel=1e-12)
+    assert x[slaves, 0].mean() == pytest.approx(50.07481068040666, rel=1e-12)
+    assert v.sum() == pytest.approx(483.4360919671088, rel=1e-12)
+    assert np.abs(v).sum() == pytest.approx(517.8582783018609, rel=1e-12)
+    assert v[slaves, 0].sum() == pytest.approx(10.535394772550537, rel=1e-12)
     assert read_history(tmp_path / "glstat.csv")["contact [J]"][-1] == pytest.approx(
-        5.49339925e-09, rel=1e-6)
+        5.49338952e-09, rel=1e-6)
