@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from numba import njit, prange
 
+from hollowbody.contact.frames import slab_bound
 from hollowbody.contact.geometry import project_corners
 from hollowbody.contact.law import ENTRY_FRACTION, pushed_through, release_depth
 
@@ -54,7 +55,7 @@ _BOUND_EPS = 1.0e-6
 
 @njit(cache=True)
 def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                  warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
+                  warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
                   odel):
     """Detection for the rows act[i0:i1] of a pass (body of :func:`detect_pass`)."""
     for ii in range(i0, i1):
@@ -110,6 +111,9 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             if abs(dn) - 1.05 * warp[s] - _BOUND_EPS > best_ad:
                 continue  # every point of s is farther than the best: it cannot win
             if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
+                continue
+            # no foot point within the contact distance and the best one so far
+            if slab_bound(s, rx, ry, rz, min(lim, best_ad), slab):
                 continue
             a = seg[s, 0]
             b = seg[s, 1]
@@ -191,14 +195,14 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
 
 @njit(cache=True, parallel=True)
 def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
-                ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
+                slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
     """Find the contact segment of the nodes act of one pass.
 
     act (m,) int32: the rows of ``nodes`` to treat
     (:func:`~hollowbody.contact.penalty.active_rows`). x (L, 3) float64 mm
     (local rows); nodes (ns,) int32 rows of x; n_thick (ns,) mm; seg (S, 4)
     int32 rows of x; s_thick (S,) mm; s_depth (S,) mm release depth; s_two
-    (S,) int8 1 = two-sided; cen, nrm, rad2, warp:
+    (S,) int8 1 = two-sided; cen, nrm, rad2, warp, slab:
     :func:`~hollowbody.contact.frames.segment_frames`; ptr (ns + 1,) int64,
     cand int32: candidate segments per node.
     In/out (last cycle's in, this cycle's out): nprev (ns, 3) contact normal
@@ -217,15 +221,15 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     nch = (ns + CHUNK - 1) // CHUNK
     for c in prange(nch):
         _detect_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, x, nodes, n_thick, seg,
-                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, nprev, oseg,
+                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, slab, ptr, cand, nprev, oseg,
                       ow, ogap, oentry, othru, gold, sold, orel, odel)
 
 
 @njit(cache=True)
 def detect_pass_serial(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                       warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
-                       odel):
+                       warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
+                       orel, odel):
     """Serial :func:`detect_pass` (small passes: no thread start-up)."""
     _detect_range(0, act.shape[0], act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen,
-                  nrm, rad2, warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
-                  orel, odel)
+                  nrm, rad2, warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold,
+                  sold, orel, odel)
