@@ -141,17 +141,17 @@ def _slabs(s, x, seg, nx, ny, nz, slab):
         slab[s, o] = ux
         slab[s, o + 1] = uy
         slab[s, o + 2] = uz
-        if not low > 0.0:  # strongly twisted: no bound on the normal's tilt
-            slab[s, o + 3] = np.inf
-            slab[s, o + 4] = 0.0
-            continue
         slab[s, o + 3] = (a * (abs(c1x * ux + c1y * uy + c1z * uz)
                                + abs(c2x * ux + c2y * uy + c2z * uz))
                           + a * a * abs(c3x * ux + c3y * uy + c3z * uz)
                           + _RESIDUAL * size * (abs(ux) + abs(uy) + abs(uz)) + 1.0e-12)
-        tilt = (abs(ppx * ux + ppy * uy + ppz * uz)
-                + a * (abs(qqx * ux + qqy * uy + qqz * uz) + abs(rrx * ux + rry * uy + rrz * uz)))
-        slab[s, o + 4] = (1.0 + 1.0e-9) * tilt / low
+        # |n_f . u| <= |u| always; the tilt bound when the normal is bounded (low > 0)
+        tf = math.sqrt(ux * ux + uy * uy + uz * uz)
+        if low > 0.0:
+            tilt = (abs(ppx * ux + ppy * uy + ppz * uz) + a * (
+                abs(qqx * ux + qqy * uy + qqz * uz) + abs(rrx * ux + rry * uy + rrz * uz)))
+            tf = min(tf, tilt / low)
+        slab[s, o + 4] = (1.0 + 1.0e-9) * tf
 
 
 @njit(cache=True, inline="always")
