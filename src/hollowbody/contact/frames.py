@@ -94,26 +94,24 @@ def _frame(s, x, seg, cen, nrm, rad2, warp, slab):
         slab[s, 3] = np.inf
         slab[s, 8] = np.inf
     else:
-        _slabs(s, x, seg, nx, ny, nz, slab)
+        _slabs(s, x[a, 0], x[a, 1], x[a, 2], x[b, 0], x[b, 1], x[b, 2], x[c, 0], x[c, 1],
+               x[c, 2], x[d, 0], x[d, 1], x[d, 2], nx, ny, nz, slab)
 
 
 @njit(cache=True, inline="always")
-def _slabs(s, x, seg, nx, ny, nz, slab):
-    """Slab data of quadrilateral s with unit normal n (see :func:`slab_bound`)."""
+def _slabs(s, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, nx, ny, nz, slab):
+    """Slab data of quadrilateral s with corners 0..3 (mm) and unit normal n (see
+    :func:`slab_bound`)."""
     a = 1.0 + INSIDE_TOL
-    i0 = seg[s, 0]
-    i1 = seg[s, 1]
-    i2 = seg[s, 2]
-    i3 = seg[s, 3]
-    c1x = 0.25 * (-x[i0, 0] + x[i1, 0] + x[i2, 0] - x[i3, 0])
-    c1y = 0.25 * (-x[i0, 1] + x[i1, 1] + x[i2, 1] - x[i3, 1])
-    c1z = 0.25 * (-x[i0, 2] + x[i1, 2] + x[i2, 2] - x[i3, 2])
-    c2x = 0.25 * (-x[i0, 0] - x[i1, 0] + x[i2, 0] + x[i3, 0])
-    c2y = 0.25 * (-x[i0, 1] - x[i1, 1] + x[i2, 1] + x[i3, 1])
-    c2z = 0.25 * (-x[i0, 2] - x[i1, 2] + x[i2, 2] + x[i3, 2])
-    c3x = 0.25 * (x[i0, 0] - x[i1, 0] + x[i2, 0] - x[i3, 0])
-    c3y = 0.25 * (x[i0, 1] - x[i1, 1] + x[i2, 1] - x[i3, 1])
-    c3z = 0.25 * (x[i0, 2] - x[i1, 2] + x[i2, 2] - x[i3, 2])
+    c1x = 0.25 * (-x0 + x1 + x2 - x3)
+    c1y = 0.25 * (-y0 + y1 + y2 - y3)
+    c1z = 0.25 * (-z0 + z1 + z2 - z3)
+    c2x = 0.25 * (-x0 - x1 + x2 + x3)
+    c2y = 0.25 * (-y0 - y1 + y2 + y3)
+    c2z = 0.25 * (-z0 - z1 + z2 + z3)
+    c3x = 0.25 * (x0 - x1 + x2 - x3)
+    c3y = 0.25 * (y0 - y1 + y2 - y3)
+    c3z = 0.25 * (z0 - z1 + z2 - z3)
     # x_,xi x x_,eta = P + xi Q + eta R: P = c1 x c2, Q = c1 x c3, R = c3 x c2
     ppx = c1y * c2z - c1z * c2y
     ppy = c1z * c2x - c1x * c2z
@@ -145,12 +143,14 @@ def _slabs(s, x, seg, nx, ny, nz, slab):
                                + abs(c2x * ux + c2y * uy + c2z * uz))
                           + a * a * abs(c3x * ux + c3y * uy + c3z * uz)
                           + _RESIDUAL * size * (abs(ux) + abs(uy) + abs(uz)) + 1.0e-12)
-        # |n_f . u| <= |u| always; the tilt bound when the normal is bounded (low > 0)
-        tf = math.sqrt(ux * ux + uy * uy + uz * uz)
-        if low > 0.0:
-            tilt = (abs(ppx * ux + ppy * uy + ppz * uz) + a * (
-                abs(qqx * ux + qqy * uy + qqz * uz) + abs(rrx * ux + rry * uy + rrz * uz)))
-            tf = min(tf, tilt / low)
+        # |n_f . u| <= tilt / low when the normal is bounded (low > 0), and <= |u|
+        u2 = ux * ux + uy * uy + uz * uz
+        tilt = (abs(ppx * ux + ppy * uy + ppz * uz) + a * (
+            abs(qqx * ux + qqy * uy + qqz * uz) + abs(rrx * ux + rry * uy + rrz * uz)))
+        if low > 0.0 and tilt * tilt < u2 * low * low:
+            tf = tilt / low
+        else:
+            tf = math.sqrt(u2)
         slab[s, o + 4] = (1.0 + 1.0e-9) * tf
 
 
