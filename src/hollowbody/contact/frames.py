@@ -47,7 +47,7 @@ SLAB_COLS = 10
 
 
 @njit(cache=True, inline="always")
-def _frame(s, x, seg, cen, nrm, rad2, warp, slab):
+def _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab):
     """Frame of segment s (see :func:`segment_frames`)."""
     a = seg[s, 0]
     b = seg[s, 1]
@@ -88,6 +88,8 @@ def _frame(s, x, seg, cen, nrm, rad2, warp, slab):
         h = max(h, abs(dx * nx + dy * ny + dz * nz))
     rad2[s] = r
     warp[s] = h
+    if not with_slab:
+        return
     if tri or not nn > 0.0:
         for j in range(SLAB_COLS):
             slab[s, j] = 0.0
@@ -179,17 +181,18 @@ def slab_bound(s, rx, ry, rz, dmax, slab):
 
 
 @njit(cache=True)
-def segment_frames(x, seg, cen, nrm, rad2, warp, slab):
+def segment_frames(x, seg, cen, nrm, rad2, warp, slab, with_slab=True):
     """Frames of every segment.
 
     x (L, 3) mm; seg (S, 4) int32 rows of x (triangles N4 == N3). Outputs:
     centroid cen (S, 3), unit mean normal nrm (S, 3), squared radius rad2 (S,)
     mm^2 (farthest corner), warp (S,) mm (farthest corner from the mean plane:
     the segment lies within +-warp of it), slab (S, SLAB_COLS) the slabs'
-    directions, thresholds (mm, inf: no test) and tilt factors (:func:`slab_bound`).
+    directions, thresholds (mm, inf: no test) and tilt factors (:func:`slab_bound`);
+    with_slab False leaves slab as it is.
     """
     for s in range(seg.shape[0]):
-        _frame(s, x, seg, cen, nrm, rad2, warp, slab)
+        _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab)
 
 
 @njit(cache=True)
@@ -197,4 +200,4 @@ def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab):
     """:func:`segment_frames` of the segments sact (m,) int32 only; the other
     rows are left as they are (the kernels read the frames of listed segments only)."""
     for j in range(sact.shape[0]):
-        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab)
+        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, True)

@@ -51,7 +51,7 @@ from hollowbody.contact.exclusion import (
 )
 from hollowbody.contact.frames import SLAB_COLS, segment_frames, segment_frames_of
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
-from hollowbody.contact.nearlist import near_filter, near_filter_parallel
+from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
     active_rows,
     count_through,
@@ -157,6 +157,9 @@ class _Pass:
         self._hi = np.zeros((nseg, 3))
         self.ptr = np.zeros(ns + 1, np.int64)
         self.cand = np.zeros(0, np.int32)
+        #: pairs the last bucket sort found (before the distance cut): a buffer size
+        #: hint for the next one, not state
+        self.n_box_pairs = 0
         self.ft = np.zeros((ns, 3))
         self.nprev = np.zeros((ns, 3))
         self.oseg = np.full(ns, -1, np.int32)
@@ -453,7 +456,7 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp, p.slab)
+            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp, p.slab, False)
         lseg = float(np.median(np.concatenate([2.0 * np.sqrt(p.rad2) for p in self.passes])))
         self._margin = min(max(2.0 * vmax * max(dt, 0.0) * self.sort_interval,
                                NEAR_MARGIN * lseg), FAR_MARGIN * lseg)
@@ -461,7 +464,11 @@ class ContactRuntime:
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
                                         p.ex_ptr, p.ex_seg, self._threaded(p),
-                                        size_hint=p.cand.shape[0])
+                                        size_hint=p.n_box_pairs)
+            p.n_box_pairs = p.cand.shape[0]
+            m = distance_cut(self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen,
+                             p.nrm, p.rad2, p.warp, p.oseg, self._margin, p.ptr, p.cand)
+            p.cand = p.cand[:m]
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
         self._xsort[:] = self._xl
