@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from hollowbody.contact.geometry import INSIDE_TOL
 
@@ -42,6 +42,8 @@ from hollowbody.contact.geometry import INSIDE_TOL
 #: size, allowed for by the slabs: generous (the residual is ~1e-6 of the size
 #: before the last step and far smaller after it).
 _RESIDUAL = 1.0e-5
+#: Segments per parallel work item of :func:`segment_frames_of_parallel`.
+_CHUNK = 256
 #: Columns of the slab array (S, SLAB_COLS): per direction u (3), threshold, tilt.
 SLAB_COLS = 10
 
@@ -201,3 +203,18 @@ def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab):
     rows are left as they are (the kernels read the frames of listed segments only)."""
     for j in range(sact.shape[0]):
         _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, True)
+
+
+@njit(cache=True)
+def _frames_range(j0, j1, x, seg, sact, cen, nrm, rad2, warp, slab):
+    for j in range(j0, j1):
+        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, True)
+
+
+@njit(cache=True, parallel=True)
+def segment_frames_of_parallel(x, seg, sact, cen, nrm, rad2, warp, slab):
+    """Threaded :func:`segment_frames_of` (each segment's rows written by one item)."""
+    m = sact.shape[0]
+    for c in prange((m + _CHUNK - 1) // _CHUNK):
+        _frames_range(c * _CHUNK, min(m, (c + 1) * _CHUNK), x, seg, sact, cen, nrm, rad2, warp,
+                      slab)

@@ -49,7 +49,12 @@ from hollowbody.contact.exclusion import (
     merge_csr,
     ring_exclusions,
 )
-from hollowbody.contact.frames import SLAB_COLS, segment_frames, segment_frames_of
+from hollowbody.contact.frames import (
+    SLAB_COLS,
+    segment_frames,
+    segment_frames_of,
+    segment_frames_of_parallel,
+)
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
@@ -548,8 +553,10 @@ class ContactRuntime:
         n_act = 0
         live = [p for p in self.passes if p.seg.shape[0]]
         for p in live:  # every pair of this cycle first: the springs on each node
-            segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab)
-            (detect_pass if self._threaded(p) else detect_pass_serial)(
+            par = self._threaded(p)
+            (segment_frames_of_parallel if par else segment_frames_of)(
+                self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab)
+            (detect_pass if par else detect_pass_serial)(
                 p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
                 p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg, p.ow,
                 p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
