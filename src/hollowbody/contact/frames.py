@@ -90,9 +90,23 @@ def _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab):
         h = max(h, abs(dx * nx + dy * ny + dz * nz))
     rad2[s] = r
     warp[s] = h
-    if not with_slab:
-        return
-    if tri or not nn > 0.0:
+    if with_slab:
+        slab_of(s, x, seg, nrm, slab)
+
+
+@njit(cache=True, inline="always")
+def slab_of(s, x, seg, nrm, slab):
+    """Slab data of segment s (row s of slab, see :func:`slab_bound`) from its corners
+    in x and its normal nrm[s] (the frame's); no test (inf) for triangles and
+    degenerate segments (zero normal)."""
+    a = seg[s, 0]
+    b = seg[s, 1]
+    c = seg[s, 2]
+    d = seg[s, 3]
+    nx = nrm[s, 0]
+    ny = nrm[s, 1]
+    nz = nrm[s, 2]
+    if c == d or (nx == 0.0 and ny == 0.0 and nz == 0.0):
         for j in range(SLAB_COLS):
             slab[s, j] = 0.0
         slab[s, 3] = np.inf
@@ -198,11 +212,11 @@ def segment_frames(x, seg, cen, nrm, rad2, warp, slab, with_slab=True):
 
 
 @njit(cache=True)
-def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab):
+def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab, with_slab=True):
     """:func:`segment_frames` of the segments sact (m,) int32 only; the other
     rows are left as they are (the kernels read the frames of listed segments only)."""
     for j in range(sact.shape[0]):
-        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, True)
+        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, with_slab)
 
 
 @njit(cache=True)
