@@ -18,6 +18,12 @@ and reach = (t_node + t_seg) / 2:
   thickness, else a node released inside the shell's own contact thickness
   would at once be caught from the far side and pushed through.
 
+Before the projection a pair must pass cheap tests that only drop pairs which
+cannot win: distance from the segment's mean plane, the bound from the best
+pair so far, the circumscribed circle, and the segment's two slabs
+(:func:`~hollowbody.contact.frames.slab_bound`: no foot point inside the
+segment within the contact distance and the best distance so far).
+
 Ties go to the lowest segment number. Pass-through detection: a node that
 was in contact with segment s in the previous cycle, had entered that
 contact from outside (first gap at most ``ENTRY_FRACTION`` of the

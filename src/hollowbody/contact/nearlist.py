@@ -11,6 +11,10 @@ has moved less than half its margin since it was made:
   m_far), holds the node. Cheap (a box test per listed pair), so they are
   rebuilt often, and the contact kernels then test and project only them.
 
+The far lists are first cut by distance (:func:`distance_cut`, at the sort):
+a box hit farther from the segment than the contact distance plus the far
+margin cannot come into contact before the next sort and is left out.
+
 A pair that is not in the near list cannot be in contact before the near
 bound is reached (the argument of the bucket sort: node and segment surface
 approach by at most the margin), and a pair not in the far list not before
