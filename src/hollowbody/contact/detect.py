@@ -208,7 +208,8 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
 
 @njit(cache=True, parallel=True)
 def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
-                slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
+                slab, slab_at, cur, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
+                orel, odel):
     """Find the contact segment of the nodes act of one pass.
 
     act (m,) int32: the rows of ``nodes`` to treat
@@ -216,7 +217,8 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     (local rows); nodes (ns,) int32 rows of x; n_thick (ns,) mm; seg (S, 4)
     int32 rows of x; s_thick (S,) mm; s_depth (S,) mm release depth; s_two
     (S,) int8 1 = two-sided; cen, nrm, rad2, warp, slab:
-    :func:`~hollowbody.contact.frames.segment_frames`; ptr (ns + 1,) int64,
+    :func:`~hollowbody.contact.frames.segment_frames` (slab_at, cur: see
+    :func:`detect_pass_serial`; not used here: the threads read slab as given); ptr (ns + 1,) int64,
     cand int32: candidate segments per node.
     In/out (last cycle's in, this cycle's out): nprev (ns, 3) contact normal
     (zero when not in contact; two-sided side memory), oseg (ns,) int32
@@ -236,8 +238,7 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     for c in prange(nch):
         _detect_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, x, nodes, n_thick, seg,
                       s_thick, s_depth, s_two, cen, nrm, rad2, warp, slab, no_stamps, 0,
-                      ptr, cand, nprev, oseg,
-                      ow, ogap, oentry, othru, gold, sold, orel, odel)
+                      ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel)
 
 
 @njit(cache=True)

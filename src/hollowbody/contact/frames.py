@@ -224,15 +224,15 @@ def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab, with_slab=True):
 
 
 @njit(cache=True)
-def _frames_range(j0, j1, x, seg, sact, cen, nrm, rad2, warp, slab):
+def _frames_range(j0, j1, x, seg, sact, cen, nrm, rad2, warp, slab, with_slab):
     for j in range(j0, j1):
-        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, True)
+        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, with_slab)
 
 
 @njit(cache=True, parallel=True)
-def segment_frames_of_parallel(x, seg, sact, cen, nrm, rad2, warp, slab):
+def segment_frames_of_parallel(x, seg, sact, cen, nrm, rad2, warp, slab, with_slab=True):
     """Threaded :func:`segment_frames_of` (each segment's rows written by one item)."""
     m = sact.shape[0]
     for c in prange((m + _CHUNK - 1) // _CHUNK):
         _frames_range(c * _CHUNK, min(m, (c + 1) * _CHUNK), x, seg, sact, cen, nrm, rad2, warp,
-                      slab)
+                      slab, with_slab)

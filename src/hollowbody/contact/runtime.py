@@ -146,8 +146,7 @@ class _Pass:
         self.rad2 = np.zeros(nseg)
         self.warp = np.zeros(nseg)
         self.slab = np.zeros((nseg, SLAB_COLS))
-        #: serial detection: the cycle stamp of each segment's slab data (made when
-        #: first needed in a cycle, see detect_pass_serial) and the stamp counter
+        #: serial detection: cycle stamps of the slab data (detect_pass_serial), not state
         self.slab_at = np.zeros(nseg, np.int64)
         self.n_slab_stamps = 0
         #: (k,) int32 the segments in the far lists (ptr / cand), set after each sort
@@ -166,8 +165,7 @@ class _Pass:
         self._hi = np.zeros((nseg, 3))
         self.ptr = np.zeros(ns + 1, np.int64)
         self.cand = np.zeros(0, np.int32)
-        #: pairs the last bucket sort found (before the distance cut): a buffer size
-        #: hint for the next one, not state
+        #: pairs of the last bucket sort before the distance cut (a size hint, not state)
         self.n_box_pairs = 0
         self.ft = np.zeros((ns, 3))
         self.nprev = np.zeros((ns, 3))
@@ -557,22 +555,15 @@ class ContactRuntime:
         n_act = 0
         live = [p for p in self.passes if p.seg.shape[0]]
         for p in live:  # every pair of this cycle first: the springs on each node
-            if self._threaded(p):  # frames and slab data first, in parallel
-                segment_frames_of_parallel(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2,
-                                           p.warp, p.slab)
-                detect_pass(
-                    p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
-                    p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg,
-                    p.ow, p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
-            else:  # slab data of the segments that reach the slab test only
-                segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp,
-                                  p.slab, False)
-                p.n_slab_stamps += 1
-                detect_pass_serial(
-                    p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
-                    p.cen, p.nrm, p.rad2, p.warp, p.slab, p.slab_at, p.n_slab_stamps, p.nptr,
-                    p.ncand, p.nprev, p.oseg, p.ow, p.ogap, p.oentry, p.othru, p.gold, p.sold,
-                    p.orel, p.odel)
+            par = self._threaded(p)  # threads: slab data with the frames, else on first use
+            p.n_slab_stamps += 1
+            (segment_frames_of_parallel if par else segment_frames_of)(
+                self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab, par)
+            (detect_pass if par else detect_pass_serial)(
+                p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
+                p.cen, p.nrm, p.rad2, p.warp, p.slab, p.slab_at, p.n_slab_stamps, p.nptr,
+                p.ncand, p.nprev, p.oseg, p.ow, p.ogap, p.oentry, p.othru, p.gold, p.sold,
+                p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(
