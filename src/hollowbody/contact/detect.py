@@ -41,10 +41,9 @@ by its own node); no allocation in the loops.
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit, prange
 
-from hollowbody.contact.frames import slab_bound, slab_of
+from hollowbody.contact.frames import slab_bound
 from hollowbody.contact.geometry import project_corners
 from hollowbody.contact.law import ENTRY_FRACTION, pushed_through, release_depth
 
@@ -62,12 +61,9 @@ _BOUND_EPS = 1.0e-6
 
 @njit(cache=True)
 def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                  warp, slab, slab_at, cur, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold,
-                  sold, orel, odel):
-    """Detection for the rows act[i0:i1] of a pass (body of :func:`detect_pass`).
-
-    cur > 0: the slab data of a segment is made here when first needed (slab_at[s]
-    != cur; serial only), else it is read as made with the frames."""
+                  warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
+                  odel):
+    """Detection for the rows act[i0:i1] of a pass (body of :func:`detect_pass`)."""
     for ii in range(i0, i1):
         i = act[ii]
         nd = nodes[i]
@@ -123,9 +119,6 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
                 continue
             # no foot point within the contact distance and the best one so far
-            if cur > 0 and slab_at[s] != cur:  # slab data made on first use this cycle
-                slab_of(s, x, seg, nrm, slab)
-                slab_at[s] = cur
             if slab_bound(s, rx, ry, rz, min(lim, best_ad), slab):
                 continue
             a = seg[s, 0]
@@ -208,8 +201,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
 
 @njit(cache=True, parallel=True)
 def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
-                slab, slab_at, cur, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
-                orel, odel):
+                slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
     """Find the contact segment of the nodes act of one pass.
 
     act (m,) int32: the rows of ``nodes`` to treat
@@ -217,8 +209,7 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     (local rows); nodes (ns,) int32 rows of x; n_thick (ns,) mm; seg (S, 4)
     int32 rows of x; s_thick (S,) mm; s_depth (S,) mm release depth; s_two
     (S,) int8 1 = two-sided; cen, nrm, rad2, warp, slab:
-    :func:`~hollowbody.contact.frames.segment_frames` (slab_at, cur: see
-    :func:`detect_pass_serial`; not used here: the threads read slab as given); ptr (ns + 1,) int64,
+    :func:`~hollowbody.contact.frames.segment_frames`; ptr (ns + 1,) int64,
     cand int32: candidate segments per node.
     In/out (last cycle's in, this cycle's out): nprev (ns, 3) contact normal
     (zero when not in contact; two-sided side memory), oseg (ns,) int32
@@ -234,21 +225,17 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     """
     ns = act.shape[0]
     nch = (ns + CHUNK - 1) // CHUNK
-    no_stamps = np.zeros(0, np.int64)  # slab data made with the frames (cur = 0)
     for c in prange(nch):
         _detect_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, x, nodes, n_thick, seg,
-                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, slab, no_stamps, 0,
-                      ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel)
+                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, slab, ptr, cand, nprev, oseg,
+                      ow, ogap, oentry, othru, gold, sold, orel, odel)
 
 
 @njit(cache=True)
 def detect_pass_serial(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                       warp, slab, slab_at, cur, ptr, cand, nprev, oseg, ow, ogap, oentry, othru,
-                       gold, sold, orel, odel):
-    """Serial :func:`detect_pass` (small passes: no thread start-up). slab_at (S,)
-    int64, cur int: with cur > 0 the slab data of a segment is made when first
-    needed in this call (segments with slab_at[s] != cur; slab_at[s] = cur then),
-    so segment_frames_of may leave it out; cur <= 0: slab as given."""
+                       warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
+                       orel, odel):
+    """Serial :func:`detect_pass` (small passes: no thread start-up)."""
     _detect_range(0, act.shape[0], act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen,
-                  nrm, rad2, warp, slab, slab_at, cur, ptr, cand, nprev, oseg, ow, ogap, oentry,
-                  othru, gold, sold, orel, odel)
+                  nrm, rad2, warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold,
+                  sold, orel, odel)

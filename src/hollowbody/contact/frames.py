@@ -19,17 +19,17 @@ could still win. In the crushed hollow block (70 km/h) most projections left
 after the first two tests end outside the segment (a node over the
 neighbouring segment of a wall it touches); the slabs reject about half of
 the projections (self contact, a recorded crushed state: 5870 -> 3131 per
-cycle) at a few ns per pair. The serial detection makes a segment's slab data
-when it first reaches the slab test in a cycle (about half of the listed
-segments do).
+cycle) at a few ns per pair; the slab data costs about 30 ns per segment and
+cycle. (Making it only for the segments that reach the test, about half of
+them, inside the detection kernel was slower: 1140 vs 1000 us per cycle of the
+self contact in a recorded crushed state.)
 
 Tried and left out (2026-11, hollow block at 70 km/h): a third, in-plane test
 (the node inside every edge's half-plane, widened by the natural-coordinate
 tolerance and a bound on the normal's tilt over a warped segment). It cut the
 Newton projections by 30 % but tripled the cost of a frame; the contact time
 was the same (6.0 vs 6.1 s in 6 ms of the block). The slabs above need no
-square root for most segments, are made only for the segments that reach
-them, and are tested after the cheap tests only.
+square root for most segments and are tested after the cheap tests only.
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ SLAB_COLS = 10
 
 
 @njit(cache=True, inline="always")
-def _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab):
+def _frame(s, x, seg, cen, nrm, rad2, warp):
     """Frame of segment s (see :func:`segment_frames`)."""
     a = seg[s, 0]
     b = seg[s, 1]
@@ -94,8 +94,6 @@ def _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab):
         h = max(h, abs(dx * nx + dy * ny + dz * nz))
     rad2[s] = r
     warp[s] = h
-    if with_slab:
-        slab_of(s, x, seg, nrm, slab)
 
 
 @njit(cache=True, inline="always")
@@ -211,22 +209,31 @@ def segment_frames(x, seg, cen, nrm, rad2, warp, slab, with_slab=True):
     directions, thresholds (mm, inf: no test) and tilt factors (:func:`slab_bound`);
     with_slab False leaves slab as it is.
     """
-    for s in range(seg.shape[0]):
-        _frame(s, x, seg, cen, nrm, rad2, warp, slab, with_slab)
+    if with_slab:
+        for s in range(seg.shape[0]):
+            _frame(s, x, seg, cen, nrm, rad2, warp)
+            slab_of(s, x, seg, nrm, slab)
+    else:  # a loop of its own: the frames alone compile to faster code
+        for s in range(seg.shape[0]):
+            _frame(s, x, seg, cen, nrm, rad2, warp)
 
 
 @njit(cache=True)
 def segment_frames_of(x, seg, sact, cen, nrm, rad2, warp, slab, with_slab=True):
     """:func:`segment_frames` of the segments sact (m,) int32 only; the other
     rows are left as they are (the kernels read the frames of listed segments only)."""
-    for j in range(sact.shape[0]):
-        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, with_slab)
+    _frames_range(0, sact.shape[0], x, seg, sact, cen, nrm, rad2, warp, slab, with_slab)
 
 
 @njit(cache=True)
 def _frames_range(j0, j1, x, seg, sact, cen, nrm, rad2, warp, slab, with_slab):
-    for j in range(j0, j1):
-        _frame(sact[j], x, seg, cen, nrm, rad2, warp, slab, with_slab)
+    if with_slab:
+        for j in range(j0, j1):
+            _frame(sact[j], x, seg, cen, nrm, rad2, warp)
+            slab_of(sact[j], x, seg, nrm, slab)
+    else:  # a loop of its own: the frames alone compile to faster code
+        for j in range(j0, j1):
+            _frame(sact[j], x, seg, cen, nrm, rad2, warp)
 
 
 @njit(cache=True, parallel=True)

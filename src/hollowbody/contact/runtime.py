@@ -146,9 +146,6 @@ class _Pass:
         self.rad2 = np.zeros(nseg)
         self.warp = np.zeros(nseg)
         self.slab = np.zeros((nseg, SLAB_COLS))
-        #: serial detection: cycle stamps of the slab data (detect_pass_serial), not state
-        self.slab_at = np.zeros(nseg, np.int64)
-        self.n_slab_stamps = 0
         #: (k,) int32 the segments in the far lists (ptr / cand), set after each sort
         self.sact = np.zeros(0, np.int32)
         #: near lists (hollowbody.contact.nearlist): CSR nptr / ncand, and fact the
@@ -555,15 +552,13 @@ class ContactRuntime:
         n_act = 0
         live = [p for p in self.passes if p.seg.shape[0]]
         for p in live:  # every pair of this cycle first: the springs on each node
-            par = self._threaded(p)  # threads: slab data with the frames, else on first use
-            p.n_slab_stamps += 1
+            par = self._threaded(p)
             (segment_frames_of_parallel if par else segment_frames_of)(
-                self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab, par)
+                self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab)
             (detect_pass if par else detect_pass_serial)(
                 p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
-                p.cen, p.nrm, p.rad2, p.warp, p.slab, p.slab_at, p.n_slab_stamps, p.nptr,
-                p.ncand, p.nprev, p.oseg, p.ow, p.ogap, p.oentry, p.othru, p.gold, p.sold,
-                p.orel, p.odel)
+                p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg, p.ow,
+                p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(

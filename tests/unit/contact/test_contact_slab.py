@@ -131,13 +131,10 @@ def test_detection_with_slabs_equals_detection_without(seed):
                 np.zeros(ns, np.int8), np.full(ns, -1, np.int32), np.zeros(ns),
                 np.full(ns, -1, np.int32), np.zeros(ns), np.zeros(ns)]
 
-    with_slab, lazy, without = state(), state(), state()
+    with_slab, without = state(), state()
     rejected = 0
     v = rng.normal(0.0, 0.05, size=x.shape)
-    lazy_slab = np.zeros((nseg, SLAB_COLS))
-    lazy_at = np.zeros(nseg, np.int64)
-    no_stamps = np.zeros(0, np.int64)
-    for cycle in range(6):
+    for _ in range(6):
         cen = np.zeros((nseg, 3))
         nrm = np.zeros((nseg, 3))
         rad2 = np.zeros(nseg)
@@ -147,17 +144,11 @@ def test_detection_with_slabs_equals_detection_without(seed):
         off = slab.copy()
         off[:, 3] = np.inf
         off[:, 8] = np.inf
-        # slabs made with the frames, made on first use (stamps), switched off
-        for sl, at, cur, st in ((slab, no_stamps, 0, with_slab),
-                                (lazy_slab, lazy_at, cycle + 1, lazy),
-                                (off, no_stamps, 0, without)):
+        for sl, st in ((slab, with_slab), (off, without)):
             detect_pass_serial(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm,
-                               rad2, warp, sl, at, cur, ptr, cand, *st)
-        for a, b, c in zip(with_slab, lazy, without):
-            np.testing.assert_array_equal(a, c)
-            np.testing.assert_array_equal(b, c)
-        made = lazy_at == cycle + 1
-        assert 0 < made.sum() and np.array_equal(lazy_slab[made], slab[made])
+                               rad2, warp, sl, ptr, cand, *st)
+        for a, b in zip(with_slab, without):
+            np.testing.assert_array_equal(a, b)
         # the slabs do reject pairs here (at the contact distance of a fresh node)
         for i in range(0, ns, 5):
             r = x[nodes[i]] - cen[cand[ptr[i]:ptr[i + 1]]]
