@@ -48,6 +48,8 @@ from hollowbody.contact.geometry import INSIDE_TOL
 _RESIDUAL = 1.0e-5
 #: Segments per parallel work item of :func:`segment_frames_of_parallel`.
 _CHUNK = 256
+#: Segments flatter than this (warp / radius) get no slab test.
+_FLAT = 1.0e-3
 #: Columns of the slab array (S, SLAB_COLS): per direction u (3), threshold, tilt.
 SLAB_COLS = 10
 
@@ -97,10 +99,11 @@ def _frame(s, x, seg, cen, nrm, rad2, warp):
 
 
 @njit(cache=True, inline="always")
-def slab_of(s, x, seg, nrm, slab):
+def slab_of(s, x, seg, nrm, rad2, warp, slab):
     """Slab data of segment s (row s of slab, see :func:`slab_bound`) from its corners
-    in x and its normal nrm[s] (the frame's); no test (inf) for triangles and
-    degenerate segments (zero normal)."""
+    in x and its frame (nrm, rad2, warp); no test (inf) for triangles, degenerate
+    segments (zero normal) and flat ones (warp <= _FLAT times the radius: their
+    projection takes one or a few Newton steps, the slabs would cost more)."""
     a = seg[s, 0]
     b = seg[s, 1]
     c = seg[s, 2]
@@ -108,7 +111,8 @@ def slab_of(s, x, seg, nrm, slab):
     nx = nrm[s, 0]
     ny = nrm[s, 1]
     nz = nrm[s, 2]
-    if c == d or (nx == 0.0 and ny == 0.0 and nz == 0.0):
+    if (c == d or (nx == 0.0 and ny == 0.0 and nz == 0.0)
+            or warp[s] * warp[s] <= _FLAT * _FLAT * rad2[s]):
         for j in range(SLAB_COLS):
             slab[s, j] = 0.0
         slab[s, 3] = np.inf
@@ -212,7 +216,7 @@ def segment_frames(x, seg, cen, nrm, rad2, warp, slab, with_slab=True):
     if with_slab:
         for s in range(seg.shape[0]):
             _frame(s, x, seg, cen, nrm, rad2, warp)
-            slab_of(s, x, seg, nrm, slab)
+            slab_of(s, x, seg, nrm, rad2, warp, slab)
     else:  # a loop of its own: the frames alone compile to faster code
         for s in range(seg.shape[0]):
             _frame(s, x, seg, cen, nrm, rad2, warp)
@@ -230,7 +234,7 @@ def _frames_range(j0, j1, x, seg, sact, cen, nrm, rad2, warp, slab, with_slab):
     if with_slab:
         for j in range(j0, j1):
             _frame(sact[j], x, seg, cen, nrm, rad2, warp)
-            slab_of(sact[j], x, seg, nrm, slab)
+            slab_of(sact[j], x, seg, nrm, rad2, warp, slab)
     else:  # a loop of its own: the frames alone compile to faster code
         for j in range(j0, j1):
             _frame(sact[j], x, seg, cen, nrm, rad2, warp)
