@@ -118,8 +118,9 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 continue  # every point of s is farther than the best: it cannot win
             if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
                 continue
-            # no foot point within the contact distance and the best one so far
-            if slab_bound(s, rx, ry, rz, min(lim, best_ad), slab):
+            # no foot point within the contact distance and the best one so far (not
+            # tested for last cycle's segment: always projected, its result is needed)
+            if k >= 0 and slab_bound(s, rx, ry, rz, min(lim, best_ad), slab):
                 continue
             a = seg[s, 0]
             b = seg[s, 1]
