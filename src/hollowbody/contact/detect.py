@@ -18,6 +18,12 @@ and reach = (t_node + t_seg) / 2:
   thickness, else a node released inside the shell's own contact thickness
   would at once be caught from the far side and pushed through.
 
+Before the projection a pair must pass cheap tests that only drop pairs which
+cannot win: distance from the segment's mean plane, the bound from the best
+pair so far, the circumscribed circle, and the segment's two slabs
+(:func:`~hollowbody.contact.frames.slab_bound`: no foot point inside the
+segment within the contact distance and the best distance so far).
+
 Ties go to the lowest segment number. A node that projects onto no
 candidate but lies within ``HOLD_TOL`` (natural coordinates) of the segment it
 was in contact with last cycle keeps that segment: behind a convex edge of the
@@ -41,6 +47,7 @@ from __future__ import annotations
 
 from numba import njit, prange
 
+from hollowbody.contact.frames import slab_bound
 from hollowbody.contact.geometry import project_corners
 from hollowbody.contact.law import ENTRY_FRACTION, HOLD_TOL, pushed_through, release_depth
 
@@ -58,7 +65,7 @@ _BOUND_EPS = 1.0e-6
 
 @njit(cache=True)
 def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                  warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
+                  warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
                   odel):
     """Detection for the rows act[i0:i1] of a pass (body of :func:`detect_pass`)."""
     for ii in range(i0, i1):
@@ -118,6 +125,10 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             if abs(dn) - 1.05 * warp[s] - _BOUND_EPS > best_ad:
                 continue  # every point of s is farther than the best: it cannot win
             if rx * rx + ry * ry + rz * rz - dn * dn > 1.1 * r2:
+                continue
+            # no foot point within the contact distance and the best one so far (not
+            # tested for last cycle's segment: always projected, its result is needed)
+            if k >= 0 and slab_bound(s, rx, ry, rz, min(lim, best_ad), slab):
                 continue
             a = seg[s, 0]
             b = seg[s, 1]
@@ -232,14 +243,14 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
 
 @njit(cache=True, parallel=True)
 def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
-                ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
+                slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel, odel):
     """Find the contact segment of the nodes act of one pass.
 
     act (m,) int32: the rows of ``nodes`` to treat
     (:func:`~hollowbody.contact.penalty.active_rows`). x (L, 3) float64 mm
     (local rows); nodes (ns,) int32 rows of x; n_thick (ns,) mm; seg (S, 4)
     int32 rows of x; s_thick (S,) mm; s_depth (S,) mm release depth; s_two
-    (S,) int8 1 = two-sided; cen, nrm, rad2, warp:
+    (S,) int8 1 = two-sided; cen, nrm, rad2, warp, slab:
     :func:`~hollowbody.contact.frames.segment_frames`; ptr (ns + 1,) int64,
     cand int32: candidate segments per node.
     In/out (last cycle's in, this cycle's out): nprev (ns, 3) contact normal
@@ -258,15 +269,15 @@ def detect_pass(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, 
     nch = (ns + CHUNK - 1) // CHUNK
     for c in prange(nch):
         _detect_range(c * CHUNK, min(ns, (c + 1) * CHUNK), act, x, nodes, n_thick, seg,
-                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, ptr, cand, nprev, oseg,
+                      s_thick, s_depth, s_two, cen, nrm, rad2, warp, slab, ptr, cand, nprev, oseg,
                       ow, ogap, oentry, othru, gold, sold, orel, odel)
 
 
 @njit(cache=True)
 def detect_pass_serial(act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2,
-                       warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold, orel,
-                       odel):
+                       warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
+                       orel, odel):
     """Serial :func:`detect_pass` (small passes: no thread start-up)."""
     _detect_range(0, act.shape[0], act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, cen,
-                  nrm, rad2, warp, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold, sold,
-                  orel, odel)
+                  nrm, rad2, warp, slab, ptr, cand, nprev, oseg, ow, ogap, oentry, othru, gold,
+                  sold, orel, odel)

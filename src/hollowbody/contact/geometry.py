@@ -202,7 +202,7 @@ def _quad_newton(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0
     return ok, xi, eta, step
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def project_quad(px, py, pz, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, xi0=0.0,
                  eta0=0.0, tol=INSIDE_TOL):
     """Project point p onto the bilinear quadrilateral with corners 0..3 (scalars, mm),

@@ -11,6 +11,10 @@ has moved less than half its margin since it was made:
   m_far), holds the node. Cheap (a box test per listed pair), so they are
   rebuilt often, and the contact kernels then test and project only them.
 
+The far lists are first cut by distance (:func:`distance_cut`, at the sort):
+a box hit farther from the segment than the contact distance plus the far
+margin cannot come into contact before the next sort and is left out.
+
 A pair that is not in the near list cannot be in contact before the near
 bound is reached (the argument of the bucket sort: node and segment surface
 approach by at most the margin), and a pair not in the far list not before
@@ -22,11 +26,18 @@ about a third of the far lists' pairs.
 
 from __future__ import annotations
 
+import math
+
 from numba import njit, prange
 
 from hollowbody.contact.bucket import segment_box
+from hollowbody.contact.law import release_depth
 
 _CHUNK = 256
+#: Bound on sum |N_a| of the shape functions over a segment widened by the
+#: natural-coordinate tolerance (quadrilaterals 1.0201, triangles 1.04): its
+#: points lie within this factor of the corners' distances from the centroid.
+_WIDEN = 1.05
 
 
 @njit(cache=True)
@@ -114,3 +125,61 @@ def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, nca
         _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
                    ncand, mark, stamp, 1)
     return _marked(mark, stamp, nsact)
+
+
+@njit(cache=True)
+def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg, margin,
+                 ptr, cand):
+    """Leave out of the far lists (in place) the pairs that cannot come into
+    contact before the next sort; returns the new number of pairs.
+
+    x (L, 3) mm; nodes (ns,) int32 rows of x; n_thick (ns,), s_thick, s_depth
+    (S,) mm, s_two (S,) int8 as in :func:`~hollowbody.contact.detect.detect_pass`;
+    cen, nrm, rad2, warp (S, ...) the segment frames at x
+    (:func:`~hollowbody.contact.frames.segment_frames`); oseg (ns,) int32 the
+    segment each node is in contact with (kept: it may hold the node deeper);
+    margin mm the sort's margin (every node moves less than margin / 2 until the
+    next sort); ptr (ns + 1,) int64 / cand int32 the lists, compacted in place
+    (each row keeps its order).
+
+    A pair is in contact only at a foot point x_p on the segment (natural
+    coordinates within the tolerance) with |p - x_p| below the contact distance
+    max(reach, release depth). The segment's points lie in the cylinder about
+    its centroid of radius _WIDEN sqrt(rad2) and half height _WIDEN warp along
+    its normal, so the distance of p from that cylinder bounds |p - x_p| from
+    below; node and segment points approach by at most _WIDEN margin before the
+    next sort. A pair farther than the contact distance plus that is left out.
+    """
+    ns = nodes.shape[0]
+    w = 0
+    start = ptr[0]
+    for i in range(ns):
+        end = ptr[i + 1]
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        tn = n_thick[i]
+        ptr[i] = w
+        for q in range(start, end):
+            s = cand[q]
+            keep = s == oseg[i]
+            if not keep:
+                reach = 0.5 * (tn + s_thick[s])
+                reach = max(reach, release_depth(s_depth[s], reach, s_two[s] != 0))
+                rx = px - cen[s, 0]
+                ry = py - cen[s, 1]
+                rz = pz - cen[s, 2]
+                dn = abs(rx * nrm[s, 0] + ry * nrm[s, 1] + rz * nrm[s, 2])
+                lat = math.sqrt(max(rx * rx + ry * ry + rz * rz - dn * dn, 0.0))
+                rad = math.sqrt(rad2[s])
+                el = max(lat - _WIDEN * rad, 0.0)
+                en = max(dn - _WIDEN * warp[s], 0.0)
+                lim = (1.0 + 1.0e-6) * reach + _WIDEN * margin + 1.0e-4 * rad + 1.0e-9
+                keep = el * el + en * en <= lim * lim
+            if keep:
+                cand[w] = s
+                w += 1
+        start = end
+    ptr[ns] = w
+    return w

@@ -49,9 +49,14 @@ from hollowbody.contact.exclusion import (
     merge_csr,
     ring_exclusions,
 )
-from hollowbody.contact.frames import segment_frames, segment_frames_of
+from hollowbody.contact.frames import (
+    SLAB_COLS,
+    segment_frames,
+    segment_frames_of,
+    segment_frames_of_parallel,
+)
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
-from hollowbody.contact.nearlist import near_filter, near_filter_parallel
+from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
     active_rows,
     count_through,
@@ -140,6 +145,7 @@ class _Pass:
         self.nrm = np.zeros((nseg, 3))
         self.rad2 = np.zeros(nseg)
         self.warp = np.zeros(nseg)
+        self.slab = np.zeros((nseg, SLAB_COLS))
         #: (k,) int32 the segments in the far lists (ptr / cand), set after each sort
         self.sact = np.zeros(0, np.int32)
         #: near lists (hollowbody.contact.nearlist): CSR nptr / ncand, and fact the
@@ -156,6 +162,8 @@ class _Pass:
         self._hi = np.zeros((nseg, 3))
         self.ptr = np.zeros(ns + 1, np.int64)
         self.cand = np.zeros(0, np.int32)
+        #: pairs of the last bucket sort before the distance cut (a size hint, not state)
+        self.n_box_pairs = 0
         self.ft = np.zeros((ns, 3))
         self.nprev = np.zeros((ns, 3))
         self.oseg = np.full(ns, -1, np.int32)
@@ -452,7 +460,7 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp)
+            segment_frames(self._xl, p.seg, p.cen, p.nrm, p.rad2, p.warp, p.slab, False)
         lseg = float(np.median(np.concatenate([2.0 * np.sqrt(p.rad2) for p in self.passes])))
         self._margin = min(max(2.0 * vmax * max(dt, 0.0) * self.sort_interval,
                                NEAR_MARGIN * lseg), FAR_MARGIN * lseg)
@@ -460,7 +468,11 @@ class ContactRuntime:
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
                                         p.ex_ptr, p.ex_seg, self._threaded(p),
-                                        size_hint=p.cand.shape[0])
+                                        size_hint=p.n_box_pairs)
+            p.n_box_pairs = p.cand.shape[0]
+            m = distance_cut(self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen,
+                             p.nrm, p.rad2, p.warp, p.oseg, self._margin, p.ptr, p.cand)
+            p.cand = p.cand[:m]
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
         self._xsort[:] = self._xl
@@ -542,11 +554,13 @@ class ContactRuntime:
         n_act = 0
         live = [p for p in self.passes if p.seg.shape[0]]
         for p in live:  # every pair of this cycle first: the springs on each node
-            segment_frames_of(self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp)
-            (detect_pass if self._threaded(p) else detect_pass_serial)(
+            par = self._threaded(p)
+            (segment_frames_of_parallel if par else segment_frames_of)(
+                self._xl, p.seg, p.fact, p.cen, p.nrm, p.rad2, p.warp, p.slab)
+            (detect_pass if par else detect_pass_serial)(
                 p.act, self._xl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two,
-                p.cen, p.nrm, p.rad2, p.warp, p.nptr, p.ncand, p.nprev, p.oseg, p.ow, p.ogap,
-                p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
+                p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg, p.ow,
+                p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(
