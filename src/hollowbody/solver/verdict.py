@@ -1,13 +1,16 @@
 """The quality of a finished run: ``"ok"``, ``"warning"`` or ``"suspect"``, with reasons.
 
 :func:`assess` reads a run's summary (the dict written to ``summary.json``) and
-checks six indicators against :class:`Thresholds`; each has a warning and a
+checks seven indicators against :class:`Thresholds`; each has a warning and a
 suspect limit (the physical argument for each default is in docs/solver.md):
 
 - energy ratio (total / (initial kinetic + external work + mass-scaling work))
   outside a band around 1: energy created or lost by the integration;
 - hourglass energy as a share of internal energy: work done by zero-energy
   modes instead of by the element's real stiffness;
+- negative hourglass energy as a share of the total energy: viscous forms
+  dissipate and stiffness forms store energy >= 0, so a negative sum is energy
+  the hourglass control created;
 - negative contact energy as a share of the total energy: penalty springs
   store energy >= 0 and friction dissipates, so a negative sum is energy the
   contact created;
@@ -36,7 +39,8 @@ class Thresholds:
 
     energy_ratio_warn / energy_ratio_suspect: half-widths of the bands around 1
     (0.1: 0.9-1.1). hourglass_warn / hourglass_suspect: hourglass / internal
-    energy. contact_negative_warn / _suspect: -contact / total energy.
+    energy. hourglass_negative_warn / _suspect: -hourglass / total energy.
+    contact_negative_warn / _suspect: -contact / total energy.
     dt_drop_warn / _suspect: dt_min / dt_initial below which. added_mass_warn_percent /
     _suspect_percent: mass-scaling added mass. pass_through_warn /
     _suspect: nodes pushed through a surface / model nodes (warn: any node when 0).
@@ -48,6 +52,8 @@ class Thresholds:
     energy_ratio_suspect: float = 0.20
     hourglass_warn: float = 0.10
     hourglass_suspect: float = 0.30
+    hourglass_negative_warn: float = 0.02
+    hourglass_negative_suspect: float = 0.10
     contact_negative_warn: float = 0.02
     contact_negative_suspect: float = 0.10
     dt_drop_warn: float = 0.01
@@ -119,6 +125,10 @@ def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, li
             "energy_ratio", ratio, f"energy ratio {ratio:.3g}")
     total, ie, hg = _num(e.get("total")), _num(e.get("internal")), _num(e.get("hourglass"))
     ref = max(abs(total or 0.0), abs(ie or 0.0) + abs(hg or 0.0))
+    if hg is not None and hg < 0.0 and total is not None and total > 0.0:
+        share = -hg / total
+        add(_grade(share, th.hourglass_negative_warn, th.hourglass_negative_suspect),
+            "hourglass_negative", hg, f"hourglass energy {hg:.3g} J ({_pct(-share)} of total)")
     if hg is not None and ref > 0.0 and hg > th.negligible * ref:
         share = hg / ie if ie is not None and ie > 0.0 else math.inf
         add(_grade(share, th.hourglass_warn, th.hourglass_suspect), "hourglass", share,

@@ -62,6 +62,15 @@ def test_hourglass_without_internal_energy_is_suspect():
     assert _indicators(_summary(internal=0.0, hourglass=1.0))["hourglass"] == SUSPECT
 
 
+@pytest.mark.parametrize("hg, level", [(-0.1, None), (-0.5, WARNING), (-2.3, SUSPECT)])
+def test_negative_hourglass_energy(hg, level):
+    # total 10 J: -0.1 J = 1 % (below the 2 % warning), -0.5 J = 5 %, -2.3 J = 23 %; energy
+    # an hourglass form created (viscous forms dissipate, stiffness forms store >= 0)
+    ind = _indicators(_summary(hourglass=hg))
+    assert ind.get("hourglass_negative") == level
+    assert "hourglass" not in ind  # the share of internal energy is not graded then
+
+
 @pytest.mark.parametrize("ce, level", [(-0.1, None), (-0.5, WARNING), (-2.3, SUSPECT),
                                        (0.5, None)])
 def test_negative_contact_energy(ce, level):
