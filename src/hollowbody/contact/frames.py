@@ -39,7 +39,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from hollowbody.contact.geometry import INSIDE_TOL
+from hollowbody.contact.geometry import INSIDE_TOL, _quad_coefficients
 
 #: Relative bound on the tangential residual p - x_p - d n of a converged foot
 #: point (last Newton step below 1e-6 in natural coordinates) times the segment's
@@ -127,15 +127,8 @@ def _slabs(s, x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3, nx, ny, nz, slab):
     """Slab data of quadrilateral s with corners 0..3 (mm) and unit normal n (see
     :func:`slab_bound`)."""
     a = 1.0 + INSIDE_TOL
-    c1x = 0.25 * (-x0 + x1 + x2 - x3)
-    c1y = 0.25 * (-y0 + y1 + y2 - y3)
-    c1z = 0.25 * (-z0 + z1 + z2 - z3)
-    c2x = 0.25 * (-x0 - x1 + x2 + x3)
-    c2y = 0.25 * (-y0 - y1 + y2 + y3)
-    c2z = 0.25 * (-z0 - z1 + z2 + z3)
-    c3x = 0.25 * (x0 - x1 + x2 - x3)
-    c3y = 0.25 * (y0 - y1 + y2 - y3)
-    c3z = 0.25 * (z0 - z1 + z2 - z3)
+    _, _, _, c1x, c1y, c1z, c2x, c2y, c2z, c3x, c3y, c3z = _quad_coefficients(
+        x0, y0, z0, x1, y1, z1, x2, y2, z2, x3, y3, z3)
     # x_,xi x x_,eta = P + xi Q + eta R: P = c1 x c2, Q = c1 x c3, R = c3 x c2
     ppx = c1y * c2z - c1z * c2y
     ppy = c1z * c2x - c1x * c2z

@@ -120,13 +120,41 @@ def hourglass_viscous(ah, dt, rot, qd, state, e, qf):
     """
     w = 0.0
     for m in range(4):
-        s0, s1, s2 = state[e, m, 0], state[e, m, 1], state[e, m, 2]
-        r0 = rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2
-        r1 = rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2
-        r2 = rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2
+        r0, r1, r2 = rotate_rows(rot, state, e, m)
         n0 = ah * qd[m, 0]
         n1 = ah * qd[m, 1]
         n2 = ah * qd[m, 2]
+        w += 0.5 * dt * ((r0 + n0) * qd[m, 0] + (r1 + n1) * qd[m, 1] + (r2 + n2) * qd[m, 2])
+        state[e, m, 0] = n0
+        state[e, m, 1] = n1
+        state[e, m, 2] = n2
+        qf[m, 0] = n0
+        qf[m, 1] = n1
+        qf[m, 2] = n2
+    return w
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def rotate_rows(rot, arr, e, m):
+    """Kernel: rot (3, 3) . arr[e, m] (3 floats) of a (e, 4, 3) array."""
+    s0, s1, s2 = arr[e, m, 0], arr[e, m, 1], arr[e, m, 2]
+    return (rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2,
+            rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2,
+            rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2)
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def advance_rotated(rot, state, e, scale, inc, dt, qd, qf):
+    """Kernel: the stored hourglass forces of element ``e``, rotated by ``rot`` (3, 3)
+    and advanced: ``state[e] = rot state[e] + scale inc`` (kN; inc (4, 3) may be
+    ``qf`` itself), copied to qf (4, 3). Returns the work increment
+    ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J); qd (4, 3) mm/ms."""
+    w = 0.0
+    for m in range(4):
+        r0, r1, r2 = rotate_rows(rot, state, e, m)
+        n0 = r0 + scale * inc[m, 0]
+        n1 = r1 + scale * inc[m, 1]
+        n2 = r2 + scale * inc[m, 2]
         w += 0.5 * dt * ((r0 + n0) * qd[m, 0] + (r1 + n1) * qd[m, 1] + (r2 + n2) * qd[m, 2])
         state[e, m, 0] = n0
         state[e, m, 1] = n1
@@ -145,20 +173,4 @@ def hourglass_stiffness(kappa, dt, rot, qd, state, e, qf):
     and incremented by ``kappa * dt * qd``; the result is copied to qf (4, 3).
     Returns the work increment dt * (Q_old_rotated + Q_new)/2 . qd (J).
     """
-    w = 0.0
-    for m in range(4):
-        s0, s1, s2 = state[e, m, 0], state[e, m, 1], state[e, m, 2]
-        r0 = rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2
-        r1 = rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2
-        r2 = rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2
-        n0 = r0 + kappa * dt * qd[m, 0]
-        n1 = r1 + kappa * dt * qd[m, 1]
-        n2 = r2 + kappa * dt * qd[m, 2]
-        w += 0.5 * dt * ((r0 + n0) * qd[m, 0] + (r1 + n1) * qd[m, 1] + (r2 + n2) * qd[m, 2])
-        state[e, m, 0] = n0
-        state[e, m, 1] = n1
-        state[e, m, 2] = n2
-        qf[m, 0] = n0
-        qf[m, 1] = n1
-        qf[m, 2] = n2
-    return w
+    return advance_rotated(rot, state, e, kappa * dt, qd, dt, qd, qf)

@@ -32,6 +32,8 @@ import math
 
 from numba import njit
 
+from hollowbody.elements.hourglass import advance_rotated, rotate_rows
+
 _TINY = 1e-300
 
 
@@ -158,15 +160,6 @@ def assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, out):
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def _rotate_rows(rot, arr, e, m):
-    """rot . arr[e, m] (3 floats)."""
-    s0, s1, s2 = arr[e, m, 0], arr[e, m, 1], arr[e, m, 2]
-    return (rot[0, 0] * s0 + rot[0, 1] * s1 + rot[0, 2] * s2,
-            rot[1, 0] * s0 + rot[1, 1] * s1 + rot[1, 2] * s2,
-            rot[2, 0] * s0 + rot[2, 1] * s1 + rot[2, 2] * s2)
-
-
-@njit(cache=True, inline="always", fastmath={"contract"})
 def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
                              e, qf):
     """Kernel: incremental assumed-strain hourglass forces (IHQ 6) of element ``e``.
@@ -178,20 +171,7 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
     ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J).
     """
     assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, qf)
-    w = 0.0
-    for m in range(4):
-        o0, o1, o2 = _rotate_rows(rot, state, e, m)
-        n0 = o0 + dt * qf[m, 0]
-        n1 = o1 + dt * qf[m, 1]
-        n2 = o2 + dt * qf[m, 2]
-        w += 0.5 * dt * ((o0 + n0) * qd[m, 0] + (o1 + n1) * qd[m, 1] + (o2 + n2) * qd[m, 2])
-        state[e, m, 0] = n0
-        state[e, m, 1] = n1
-        state[e, m, 2] = n2
-        qf[m, 0] = n0
-        qf[m, 1] = n1
-        qf[m, 2] = n2
-    return w
+    return advance_rotated(rot, state, e, dt, qf, dt, qd, qf)
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
@@ -206,7 +186,7 @@ def assumed_strain_total(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd,
     (4, 3) scratch. Returns the work increment (J).
     """
     for m in range(4):
-        d0, d1, d2 = _rotate_rows(rot, disp, e, m)
+        d0, d1, d2 = rotate_rows(rot, disp, e, m)
         disp[e, m, 0] = d0 + dt * qd[m, 0]
         disp[e, m, 1] = d1 + dt * qd[m, 1]
         disp[e, m, 2] = d2 + dt * qd[m, 2]
@@ -216,7 +196,7 @@ def assumed_strain_total(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd,
     assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, work, qf)
     w = 0.0
     for m in range(4):
-        o0, o1, o2 = _rotate_rows(rot, state, e, m)
+        o0, o1, o2 = rotate_rows(rot, state, e, m)
         n0, n1, n2 = qf[m, 0], qf[m, 1], qf[m, 2]
         w += 0.5 * dt * ((o0 + n0) * qd[m, 0] + (o1 + n1) * qd[m, 1] + (o2 + n2) * qd[m, 2])
         state[e, m, 0] = n0
