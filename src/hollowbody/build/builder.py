@@ -14,6 +14,8 @@ from collections import defaultdict
 
 import numpy as np
 
+from hollowbody.build.common import item_error, or_default
+from hollowbody.build.mechanics import build_mechanics
 from hollowbody.build.surface_refs import defined_surface
 from hollowbody.build.tied import tied_contacts
 from hollowbody.build.unsupported import not_defined, unsupported_definitions
@@ -68,15 +70,8 @@ _AXES = {0: (), 1: (0,), 2: (1,), 3: (2,), 4: (0, 1), 5: (1, 2), 6: (2, 0), 7: (
 _MOTION_DOFS = (1, 2, 3, 5, 6, 7)
 
 
-def _err(item: KeywordItem, message: str, line: int | None = None) -> DeckError:
-    """DeckError at ``item``'s card (or ``line`` of its file)."""
-    return DeckError(message, item.source.file, item.source.line if line is None else line,
-                     item.keyword_line().lstrip("*"))
-
-
-def _or(value: float, default: float) -> float:
-    """LS-DYNA's 'zero means default'."""
-    return default if not value else value
+_err = item_error
+_or = or_default
 
 
 class _Rows:
@@ -379,6 +374,7 @@ def build_model(deck: Deck) -> m.Model:
     model.contacts = _contacts(b, model)
     model.tied_contacts = tied_contacts(b.of(TiedContact), model, len(model.contacts) + 1)
     model.output = _outputs(b, model)
+    build_mechanics(b, model)
     return model
 
 

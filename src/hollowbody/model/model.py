@@ -357,6 +357,26 @@ class Model:
     segment_sets: dict[int, np.ndarray] = field(default_factory=dict)
     #: Unsupported keywords seen while reading: (keyword, file, line).
     unsupported: list[tuple[str, str, int]] = field(default_factory=list)
+    # -- body mechanics (docs/mechanics.md); each family's records are defined in
+    # its own module of this package and built by its own module of ``build``
+    #: *ELEMENT_BEAM groups, one per part (``model.beams``)
+    beam_groups: list = field(default_factory=list)
+    #: *ELEMENT_DISCRETE groups, one per part (``model.discrete``)
+    discrete_groups: list = field(default_factory=list)
+    #: *LOAD_BODY_*, *LOAD_NODE_*, *LOAD_RIGID_BODY (``model.loads``)
+    loads: list = field(default_factory=list)
+    #: *RIGIDWALL_PLANAR (``model.loads``)
+    rigid_walls: list = field(default_factory=list)
+    #: *CONSTRAINED_RIGID_BODIES, *CONSTRAINED_NODAL_RIGID_BODY,
+    #: *CONSTRAINED_EXTRA_NODES (``model.rigid_constraints``)
+    rigid_merges: list = field(default_factory=list)
+    nodal_rigid_bodies: list = field(default_factory=list)
+    extra_nodes: list = field(default_factory=list)
+    #: *CONSTRAINED_JOINT_*, *CONSTRAINED_JOINT_STIFFNESS_* (``model.joints``)
+    joints: list = field(default_factory=list)
+    joint_stiffness: list = field(default_factory=list)
+    #: *DEFINE_COORDINATE_* by CID (``model.joints``)
+    coordinate_systems: dict = field(default_factory=dict)
 
     @property
     def n_nodes(self) -> int:

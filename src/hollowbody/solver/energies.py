@@ -39,13 +39,17 @@ def energies(plan, state) -> dict[str, float]:  # noqa: ANN001
     """{kinetic, internal, hourglass, contact, external_work, total, energy_ratio,
     mass_scaling_work, added_mass (kg)} at the State's time."""
     ke = kinetic_energy(plan, state)
+    terms = getattr(plan, "terms", ())
     ie = sum(rt.internal_energy for rt in plan.elements)
+    ie += sum(getattr(t, "internal_energy", 0.0) for t in terms)
     hg = sum(rt.hourglass_energy for rt in plan.elements)
     ce = sum(c.energy for c in plan.contacts)
+    ce += sum(getattr(t, "contact_energy", 0.0) for t in terms)
+    ext = state.ext_work + sum(getattr(t, "external_work", 0.0) for t in terms)
     total = ke + ie + hg + ce
     ms = state.mass_scaling
-    ref = state.e0 + state.ext_work + ms.work
+    ref = state.e0 + ext + ms.work
     ratio = total / ref if abs(ref) > 1e-30 else 1.0
     return {"kinetic": ke, "internal": ie, "hourglass": hg, "contact": ce,
-            "external_work": state.ext_work, "total": total, "energy_ratio": ratio,
+            "external_work": ext, "total": total, "energy_ratio": ratio,
             "mass_scaling_work": ms.work, "added_mass": ms.total_added}

@@ -16,8 +16,10 @@ from hollowbody.elements.solid_step_factor import volumetric_step_factor
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
+from hollowbody.model.summary import shell_lengths, solid_lengths
 from hollowbody.solver.boundary import Constraints
 from hollowbody.solver.rigid import RigidBody, build_rigid_bodies
+from hollowbody.solver.terms import collect_terms
 
 
 @dataclass
@@ -57,6 +59,12 @@ class Assembly:
     #: (n, 3) float64 mm initial coordinates of the run: the model's with the tied
     #: slave nodes moved onto their master surface (the Model keeps the deck's)
     node_x0: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: force terms: loads, joints, rigid walls (:mod:`hollowbody.solver.terms`)
+    terms: list = field(default_factory=list)
+    #: ms: the critical step of the rigid parts' elements as if they were elastic with
+    #: *MAT_RIGID's E and PR (inf without rigid elements); the step of a model in
+    #: which nothing deformable sets one (rigid bodies on joints)
+    rigid_dt: float = np.inf
 
     def element_counts(self) -> dict[str, int]:
         return dict(self.counts)
@@ -131,6 +139,12 @@ def assemble(model: Model) -> Assembly:
                                                   model.controls.shell_tangent_drilling),
                                               drilling_tangent=(
                                                   model.controls.shell_tangent_drilling)))
+    from hollowbody.elements.beam_group import beam_runtimes
+    from hollowbody.elements.discrete_group import discrete_runtimes
+
+    for rt in [*beam_runtimes(model, x0), *discrete_runtimes(model, x0)]:
+        counts[rt.family] = counts.get(rt.family, 0) + int(rt.n_elem)
+        asm.elements.append(rt)
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:
@@ -145,6 +159,7 @@ def assemble(model: Model) -> Assembly:
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
     asm.constraints = Constraints(model, asm.bodies)
+    asm.rigid_dt = rigid_element_step(model, x0)
     asm.erode = bool(model.controls.erode)
     rigid_node = ~asm.deformable
     fixed_node = np.zeros((n, 3), dtype=bool)
@@ -157,4 +172,31 @@ def assemble(model: Model) -> Assembly:
     for cdef in model.contacts:
         asm.contacts.append(ContactRuntime(cdef, model, contact_mass, rigid_node,
                                            fixed_node.all(axis=1), rigid_share, x0=x0))
+    asm.terms = collect_terms(model, asm)
     return asm
+
+
+def rigid_element_step(model: Model, x0: np.ndarray) -> float:
+    """Smallest L_e / c (ms) of the rigid parts' elements with *MAT_RIGID's E, PR and
+    density (solids: dilatational, shells: plate wave speed); inf when there are none.
+
+    LS-DYNA asks for realistic E and PR on *MAT_RIGID; a model of rigid bodies on
+    joints (nothing deformable) runs with this step times TSSFAC.
+    """
+    best = np.inf
+    for groups, lengths, solid in ((model.solid_groups, solid_lengths, True),
+                                   (model.shell_groups, shell_lengths, False)):
+        for g in groups:
+            mat = model.material_of(g.pid)
+            e, nu, rho = mat.params.get("E", 0.0), mat.params.get("PR", 0.0), mat.density
+            if mat.kind != "rigid" or e <= 0.0 or rho <= 0.0 or g.conn.shape[0] == 0:
+                continue
+            if solid:
+                c = np.sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu)))
+            else:
+                c = np.sqrt(e / (rho * (1.0 - nu * nu)))
+            length = lengths(g.conn, x0)
+            length = length[length > 0.0]
+            if length.size:
+                best = min(best, float(length.min() / c))
+    return best

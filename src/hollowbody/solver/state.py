@@ -69,7 +69,7 @@ class State:
     ext_work: float = 0.0
     e0: float = 0.0
     n_eroded: int = 0
-    timing: dict[str, float] = field(default_factory=lambda: {"elements": 0.0,
+    timing: dict[str, float] = field(default_factory=lambda: {"elements": 0.0, "mechanics": 0.0,
                                                                "contact": 0.0})
     events: list[tuple[str, str]] = field(default_factory=list)
     parts: dict[str, object] = field(default_factory=dict)
@@ -110,6 +110,9 @@ def state_parts(plan, state: State) -> dict[str, object]:  # noqa: ANN001 - Asse
         parts[f"bodies/{k}"] = b
     if plan.ties is not None:
         parts["ties"] = plan.ties
+    for k, term in enumerate(getattr(plan, "terms", ())):
+        if getattr(type(term), "STATE_FIELDS", ()):
+            parts[f"terms/{k}"] = term
     parts["mass_scaling"] = state.mass_scaling
     for k, g in enumerate(state.mass_scaling.groups):
         parts[f"mass_scaling/{k}"] = g

@@ -45,7 +45,8 @@ class Termination(Exception):
 def start(model, plan, state) -> None:  # noqa: ANN001 - Model, Assembly, State
     """Initial conditions and the forces at t = 0 (``state.dt_next``, ``state.dt0``).
 
-    Raises Termination when no deformable element sets a time step.
+    Raises Termination when nothing sets a time step (no deformable element and no
+    rigid element with E and density: ``Assembly.rigid_dt``).
     """
     cons = plan.constraints
     # prescribed rigid-body velocities hold from t = 0 (initial conditions, in the
@@ -59,8 +60,8 @@ def start(model, plan, state) -> None:  # noqa: ANN001 - Model, Assembly, State
     forces(model, plan, state, 0.0)
     state.mass_scaling.work = 0.0  # mass added at t = 0 is in the initial energy
     if not np.isfinite(state.dt_next) or state.dt_next <= 0.0:
-        raise Termination(ERROR, "no deformable element sets a time step "
-                          "(a model of rigid parts only cannot be run)")
+        raise Termination(ERROR, "nothing sets a time step: no deformable element, and "
+                          "no rigid element with E and density on its *MAT_RIGID")
     state.dt0 = state.dt_next
     state.dtmin_abs = model.controls.dtmin * state.dt0
 
@@ -95,6 +96,10 @@ def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
         state.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
         state.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
     cons.apply_nodes(v, x, state.t, dt)
+    for term in plan.terms:  # velocity constraints (stationary rigid walls)
+        constrain = getattr(term, "constrain", None)
+        if constrain is not None:
+            constrain(state, dt)
     pn = cons.prescribed_nodes
     if pn.size:
         # reaction impulse m (v^{n+1/2} - v_free) times the node's displacement
@@ -122,13 +127,26 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
     t1 = time.perf_counter()
     for c in plan.contacts:
         c.add_forces(state.x, state.v, dt, state.cycle, f)
+    t2 = time.perf_counter()
+    for term in plan.terms:  # loads, joints, rigid walls (solver.terms)
+        d, eid, pid_t = term.add_forces(state, dt)
+        if d < dt_crit:
+            dt_crit, elem, pid = d, eid, pid_t
     if plan.ties is not None:  # [tied] slave forces passed to the master nodes
         plan.ties.distribute(f, state.mom)
-    t2 = time.perf_counter()
+    t3 = time.perf_counter()
     state.timing["elements"] += t1 - t0
     state.timing["contact"] += t2 - t1
+    state.timing["mechanics"] += t3 - t2
     for body in plan.bodies:
         body.gather(state.x, f, state.mom)
+    for term in plan.terms:  # loads on rigid bodies as a whole
+        after = getattr(term, "after_gather", None)
+        if after is not None:
+            after(state, plan.bodies, dt)
+    if not np.isfinite(dt_crit) and not plan.elements:
+        # rigid bodies only (on joints): setup.rigid_element_step
+        dt_crit, elem, pid = plan.rigid_dt, -1, -1
     ms = state.mass_scaling
     if ms.active:
         ms.apply(state.v, state.w if plan.has_rotations else None)
