@@ -42,7 +42,7 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               label: str = "run", restart: str | Path | None = None,
               dump_cycles: int | None = None, overwrite: bool = False,
               inputs: tuple[Path, ...] = (), quality: Thresholds | None = None,
-              threads: int | str | None = None) -> RunResult:
+              threads: int | str | None = None, d3plot: bool | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
@@ -53,11 +53,14 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
     quality: limits of the run's verdict (``summary["quality"]``; None: the defaults).
     threads: numba threads of the run, at most N or ``"auto"`` (see
     :mod:`hollowbody.solver.threads`); None keeps numba's current count.
+    d3plot: write a d3plot for LS-PrePost (True), never (False), or when the deck has
+    *DATABASE_BINARY_D3PLOT and lasso-python is installed (None).
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
                                  dump_cycles=dump_cycles, overwrite=overwrite,
-                                 inputs=tuple(inputs), quality=quality, threads=threads))
+                                 inputs=tuple(inputs), quality=quality, threads=threads,
+                                 d3plot=d3plot))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
@@ -65,10 +68,11 @@ def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = Non
              strict: bool = False, restart: str | Path | None = None,
              dump_cycles: int | None = None, overwrite: bool = False,
              quality: Thresholds | None = None,
-             threads: int | str | None = None) -> RunResult:
+             threads: int | str | None = None, d3plot: bool | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model` (the deck and its includes are
     the run's ``inputs``)."""
     model, files = _read_for_run(deck, strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
                      label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
-                     overwrite=overwrite, inputs=files, quality=quality, threads=threads)
+                     overwrite=overwrite, inputs=files, quality=quality, threads=threads,
+                     d3plot=d3plot)

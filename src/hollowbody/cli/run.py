@@ -42,6 +42,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(default: the deck's *CONTROL_TIMESTEP ERODE)")
     p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=True,
                    help="write ParaView states (default: --vtk)")
+    p.add_argument("--d3plot", action=argparse.BooleanOptionalAction, default=None,
+                   help="write the states as a d3plot for LS-PrePost (needs the optional "
+                        "extra: pip install 'hollowbody[d3plot]'); default: when the deck "
+                        "has *DATABASE_BINARY_D3PLOT and lasso-python is installed")
     p.add_argument("--strict", action="store_true",
                    help="unknown keywords are errors (default: warnings)")
     p.add_argument("--quiet", action="store_true",
@@ -107,7 +111,7 @@ def main(args: argparse.Namespace) -> int:
         raise UserInputError(f"--quality: {exc}") from None
     out = args.out or args.deck.with_name(args.deck.stem + "_out")
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
-                      vtk=args.vtk, quiet=args.quiet, strict=args.strict,
+                      vtk=args.vtk, d3plot=args.d3plot, quiet=args.quiet, strict=args.strict,
                       restart=args.restart, dump_cycles=args.dump_cycles,
                       overwrite=args.overwrite, quality=thresholds)
     print(f"{result.status}: {result.reason}")

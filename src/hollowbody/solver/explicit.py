@@ -26,6 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.errors import UserInputError
+from hollowbody.io.results.d3plot import EXTRA as D3PLOT_EXTRA
+from hollowbody.io.results.d3plot import available as d3plot_available
 from hollowbody.model.summary import unsupported_entries, unsupported_lines
 from hollowbody.solver import restart as rs
 from hollowbody.solver import threads as th
@@ -51,6 +53,8 @@ class RunOptions:
     end_time: overrides *CONTROL_TERMINATION ENDTIM (ms) when given.
     erode: overrides *CONTROL_TIMESTEP ERODE when given.
     vtk: write ParaView states; quiet: no progress display.
+    d3plot: write a d3plot for LS-PrePost (True; needs lasso-python), never (False),
+    or when the deck has *DATABASE_BINARY_D3PLOT and lasso-python is installed (None).
     restart: resume from this restart file, or from the newest ``d3dumpNN``
     of ``out_dir`` with :data:`NEWEST`; None starts at t = 0.
     dump_cycles: overrides *DATABASE_BINARY_D3DUMP CYCL when given (0 = none).
@@ -69,6 +73,7 @@ class RunOptions:
     end_time: float | None = None
     erode: bool | None = None
     vtk: bool = True
+    d3plot: bool | None = None
     quiet: bool = False
     label: str = "run"
     restart: Path | str | None = None
@@ -136,6 +141,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         n_threads, threads_why = th.resolve(setting, th.model_work(plan))
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    if options.d3plot and not d3plot_available():  # before the folder is touched
+        raise UserInputError(f"d3plot output needs lasso-python: {D3PLOT_EXTRA}")
     if resume is None:  # a restart continues the folder's run
         prepare_out_dir(out, options.overwrite, options.inputs)
     out.mkdir(parents=True, exist_ok=True)
@@ -147,7 +154,7 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     state = init_state(model, plan)
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
                          resume=resume[2]["outputs"] if resume else None,
-                         thresholds=options.quality)
+                         thresholds=options.quality, d3plot=options.d3plot)
     extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model),
                    "threads": n_threads}
     if resume is None:
@@ -156,6 +163,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                     f"{'on' if plan.erode else 'off'}")
         for line in unsupported_lines(model):
             outputs.log(line, logging.WARNING)
+        if outputs.d3plot_note:
+            outputs.log(outputs.d3plot_note)
         for w in caught:
             outputs.log(str(w.message), logging.WARNING)
         for rt in plan.elements:

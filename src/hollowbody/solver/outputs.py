@@ -7,6 +7,8 @@
 - ``spcforc.csv`` total SPC reaction force;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
+- ``d3plot`` (+ ``d3plot01``) the same states for LS-PrePost (optional extra lasso-python; when
+  the deck has *DATABASE_BINARY_D3PLOT or the run asks for it), written at the end;
 - ``messages.log`` the run log; ``summary.json`` how the run ended.
 
 Histories are written at the deck's *DATABASE_<name> intervals, or at
@@ -27,8 +29,11 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.errors import UserInputError
+from hollowbody.io.results.d3plot import EXTRA as D3PLOT_EXTRA
+from hollowbody.io.results.d3plot import available as d3plot_available
 from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
+from hollowbody.solver.d3plot_output import make_series, state_fields
 from hollowbody.solver.energies import energies, node_velocity_full_step
 from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
@@ -52,7 +57,7 @@ class _Clock:
 
 #: Files a run writes into its output folder (what ``overwrite`` deletes).
 RUN_OUTPUTS = ("*.csv", "states*.vtu", "states*.pvd", "messages.log", "summary.json",
-               "d3dump*", "force_displacement.*")
+               "d3dump*", "force_displacement.*", "d3plot", "d3plot[0-9][0-9]")
 #: Files that show a folder holds an earlier run.
 EARLIER_RUN = ("summary.json", "messages.log", "glstat.csv", "states.pvd", "d3dump*")
 
@@ -150,7 +155,8 @@ class RunOutputs:
     """
 
     def __init__(self, out: Path, model, asm, end_time: float, vtk: bool = True,
-                 resume: dict | None = None, thresholds: Thresholds | None = None) -> None:
+                 resume: dict | None = None, thresholds: Thresholds | None = None,
+                 d3plot: bool | None = None) -> None:
         self.out = Path(out)
         self.thresholds = thresholds or Thresholds()
         self.model = model
@@ -165,6 +171,18 @@ class RunOutputs:
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
+        self.d3plot = None
+        self.d3plot_note = ""
+        if d3plot or (d3plot is None and model.output.d3plot_dt > 0.0):
+            if d3plot_available():
+                self.d3plot = make_series(self.out, model, asm)
+                if resume is not None:
+                    self.d3plot.resume(int(resume.get("d3plot_states", 0)))
+            elif d3plot:
+                raise UserInputError(f"d3plot output needs lasso-python: {D3PLOT_EXTRA}")
+            else:
+                self.d3plot_note = ("*DATABASE_BINARY_D3PLOT: no d3plot written (lasso-python "
+                                    f"is not installed: {D3PLOT_EXTRA}); ParaView states only")
         self.glstat = HistoryWriter(self.out / "glstat.csv", [
             "time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]", "hourglass [J]",
             "contact [J]", "external_work [J]", "total [J]", "energy_ratio",
@@ -202,6 +220,7 @@ class RunOutputs:
                 "clocks": {name: c.next for name, c in self.clocks.items()},
                 "state_clock": self.state_clock.next,
                 "vtk_entries": list(self.vtk.entries) if self.vtk is not None else [],
+                "d3plot_states": len(self.d3plot.states) if self.d3plot is not None else 0,
                 "last_energies": dict(self.last_energies),
                 "last_forced": self._last_forced}
 
@@ -247,7 +266,8 @@ class RunOutputs:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
         if self.clocks["matsum"].due(t) or force:
             self._write_matsum(state)
-        if self.vtk is not None and (self.state_clock.due(t) or force):
+        if (self.vtk is not None or self.d3plot is not None) and \
+                (self.state_clock.due(t) or force):
             self.write_state(state)
 
     def _contact_events(self, state) -> None:  # noqa: ANN001
@@ -290,6 +310,10 @@ class RunOutputs:
             self.matsum.write([state.t, pid, ke, ie, hg])
 
     def write_state(self, state) -> None:  # noqa: ANN001
+        if self.d3plot is not None:
+            self.d3plot.add(state_fields(self.model, self.asm, state))
+        if self.vtk is None:
+            return
         cells, data = [], {"part": [], "element": [], "alive": [], "stress [GPa]": [],
                            "von_mises [GPa]": [], "plastic_strain": []}
         runtimes = {rt.pid: rt for rt in self.asm.elements}
@@ -332,6 +356,12 @@ class RunOutputs:
                 self.record(state, force=True)
         except Exception as exc:  # never lose the summary because a last write failed
             self.log(f"could not write the final state: {exc}", logging.ERROR)
+        if self.d3plot is not None:
+            try:
+                self.d3plot.write()
+                self.log(f"d3plot: {len(self.d3plot.states)} states in {self.d3plot.path}")
+            except Exception as exc:  # the other outputs and the summary still come
+                self.log(f"could not write the d3plot: {exc}", logging.ERROR)
         last = self.last_energies
         summary = {
             "status": status,
