@@ -34,7 +34,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("solver",),
     ("api",),
     ("hollow", "curves", "rating"),
-    ("scenarios",),
+    ("scenarios", "body"),
     ("calibrate",),
     ("report",),
     ("cli", "testing"),

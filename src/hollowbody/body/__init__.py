@@ -1,0 +1,1 @@
+"""The open pedestrian model: anthropometry (:mod:`hollowbody.body.anthropometry`)."""
