@@ -20,10 +20,15 @@ def _half_next(state) -> float:  # noqa: ANN001 - State
 
 def node_velocity_full_step(plan, state) -> np.ndarray:  # noqa: ANN001
     """v^{n+1} (n, 3) mm/ms estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes);
-    degrees of freedom held by an SPC stay at zero (their force is the reaction)."""
+    degrees of freedom held by an SPC stay at zero (their force is the reaction), and
+    nodes on a rigid wall do not move into it (``term.full_step_velocity``)."""
     v = state.v + _half_next(state) * state.f * state.inv_m[:, None]
     if plan.constraints.any_fixed:
         v[plan.constraints.fixed] = 0.0
+    for term in getattr(plan, "terms", ()):  # velocity constraints (rigid walls)
+        stop = getattr(term, "full_step_velocity", None)
+        if stop is not None:
+            stop(state, v)
     return v
 
 
