@@ -30,11 +30,11 @@ G = 9.81e-3  # mm/ms^2
 def add_block(deck: Deck, *, pid: int, size: float, h: float, z0: float = 0.0,
               x0: float = 0.0, first_node: int = 1, first_elem: int = 1,
               rigid: bool = False, e: float = 0.01, pr: float = 0.3,
-              ro: float = 1.0e-6, inertia_tm: float = 0.0) -> np.ndarray:
+              ro: float = 1.0e-6, inertia_tm: float = 0.0, vx: float = 0.0) -> np.ndarray:
     """A cube of side ``size`` (hex edge h) standing on z = z0 centred on x = x0, as part
     ``pid`` (section and material ids = pid). ``inertia_tm`` > 0 (rigid only): a
-    *PART_INERTIA part of that mass (kg), its inertia that of a uniform cube. Returns
-    its node ids."""
+    *PART_INERTIA part of that mass (kg), its inertia that of a uniform cube, its
+    initial velocity ``vx`` mm/ms along x. Returns its node ids."""
     x, conn = standing_block((size, size, size), h)
     x = x + np.array([x0, 0.0, z0])
     ids = first_node + np.arange(x.shape[0])
@@ -44,7 +44,7 @@ def add_block(deck: Deck, *, pid: int, size: float, h: float, z0: float = 0.0,
         i0 = inertia_tm * size ** 2 / 6.0
         deck.add(PartInertia(pid=pid, secid=pid, mid=pid, title=f"block {pid}", xc=x0,
                              yc=0.0, zc=z0 + size / 2, tm=inertia_tm, ixx=i0, iyy=i0,
-                             izz=i0))
+                             izz=i0, vtx=vx))
     else:
         deck.add(Part(pid=pid, secid=pid, mid=pid, hgid=1 if not rigid else 0,
                       title=f"block {pid}"))
