@@ -46,13 +46,17 @@ def kinetic_energy(plan, state) -> float:  # noqa: ANN001
 
 def rigid_kinetic_energy(body, half: float) -> float:  # noqa: ANN001 - RigidBody
     """Kinetic energy (J) of a rigid body at the full step, as for the nodes:
-    V^{n+1/2} + dt/2 F^{n+1} / M (constrained and prescribed components unchanged),
-    rotation at the half step (``half`` = dt^{n+1} / 2 ms)."""
+    V^{n+1/2} + dt/2 F^{n+1} / M and w^{n+1/2} + dt/2 I^{-1} (M^{n+1} - w x I w)
+    (constrained and prescribed components unchanged; ``half`` = dt^{n+1} / 2 ms)."""
     acc = body.force / body.mass if body.mass > 0.0 else np.zeros(3)
     acc = np.where(body.fixed_trans | body.prescribed_trans, 0.0, acc)
     vel = body.vel + half * acc
-    return 0.5 * body.mass * float(vel @ vel) + \
-        0.5 * float(body.omega @ body.inertia() @ body.omega)
+    inertia = body.inertia()
+    omega = body.omega
+    if half > 0.0 and np.linalg.det(inertia) > 0.0:
+        alpha = np.linalg.solve(inertia, body.moment - np.cross(omega, inertia @ omega))
+        omega = omega + half * np.where(body.fixed_rot | body.prescribed_rot, 0.0, alpha)
+    return 0.5 * body.mass * float(vel @ vel) + 0.5 * float(omega @ inertia @ omega)
 
 
 def energies(plan, state) -> dict[str, float]:  # noqa: ANN001
