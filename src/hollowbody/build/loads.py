@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.build.common import item_error, or_default
+from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     KeywordItem,
     LoadBody,
@@ -28,7 +29,9 @@ _LOAD_DOFS = (1, 2, 3, 5, 6, 7)
 
 
 def build(b, model: Model) -> None:  # noqa: ANN001 - builder.Builder
-    """Read the loads and rigid walls of ``b``'s deck into ``model``."""
+    """Read the loads and rigid walls of ``b``'s deck into ``model``; reject *MAT_NULL
+    solids."""
+    _null_solids(model)
     model.loads.extend(_body_loads(b, model))
     model.loads.extend(_node_loads(b, model))
     model.loads.extend(_rigid_body_loads(b, model))
@@ -159,3 +162,14 @@ def _rigid_walls(b, model: Model) -> list[RigidWallDef]:  # noqa: ANN001
                                 rwksf=or_default(it.rwksf, 1.0), offset=float(it.offset),
                                 title=it.heading, source=it.source))
     return out
+
+
+def _null_solids(model: Model) -> None:
+    """*MAT_NULL on solid elements is a fluid that needs an *EOS: not supported."""
+    for g in model.solid_groups:
+        mat = model.material_of(g.pid)
+        if mat.kind == "null":
+            raise DeckError(f"material {mat.mid} of solid part {g.pid}: solid elements of "
+                            "*MAT_NULL need an equation of state (*EOS), which is not "
+                            "supported; *MAT_NULL is supported on shells (contact surfaces)",
+                            mat.source.file, mat.source.line, mat.keyword or "MAT_NULL")

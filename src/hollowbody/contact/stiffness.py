@@ -41,7 +41,7 @@ from hollowbody.contact.surface import (
     segment_max_diagonal,
     segment_normals,
 )
-from hollowbody.errors import UserInputError
+from hollowbody.errors import DeckError, UserInputError
 from hollowbody.model.mass import hex_volumes
 from hollowbody.model.model import MaterialDef, Model
 
@@ -62,9 +62,9 @@ def bulk_modulus(mat: MaterialDef) -> float:
     if mat.kind == "null":  # *MAT_NULL: LS-DYNA takes the contact stiffness from YM, PR
         e = float(p.get("YM", 0.0))
         if e <= 0.0:
-            raise UserInputError(
-                f"material {mat.mid} (*MAT_NULL): a contact surface of *MAT_NULL needs "
-                "YM > 0 and PR (its contact stiffness)")
+            raise DeckError(f"material {mat.mid}: a contact surface of *MAT_NULL needs YM > 0 "
+                            "and PR (its contact stiffness)", mat.source.file,
+                            mat.source.line, mat.keyword or "MAT_NULL")
     if e <= 0.0:
         raise UserInputError(
             f"material {mat.mid} ({mat.kind}): contact needs a Young's modulus E > 0 "
