@@ -48,13 +48,13 @@ def _bar() -> tuple:
 def test_step_load_on_a_bar_overshoots_twice_the_static_displacement():
     """Static u = F L / (E A) = 0.02 mm. A step load on an undamped elastic bar: the
     free end moves from 0 to 2u and back with period 4 L / c = 2 ms (c = sqrt(E / rho)
-    = 100 mm/ms). Measured over 4 periods: maximum 2u within 2 %, time mean u within
-    2 % (the discrete bar's dispersion and the lumped mass shift the peaks by a few
-    tenths of a percent). The external work is F times the end displacement to 1e-9
-    (the trapezoidal work of a constant force is exact). The balance is checked with a
-    ramp below: a step excites the mesh's highest modes, whose instantaneous kinetic
-    energy the full-step velocity estimate misses by up to a few % (as with any
-    load or constraint)."""
+    = 100 mm/ms). Over 4 periods: maximum 2u within 3 % (measured 1.8 % below: the
+    ten-element bar's dispersion rounds the front of the reflected step), time mean u
+    within 2 % (measured +0.2 %). The external work is F times the end displacement
+    to 1e-9 (the trapezoidal work of a constant force is exact). The balance is
+    checked with a ramp below: a step excites the mesh's highest modes, whose
+    instantaneous kinetic energy the full-step velocity estimate misses by up to a
+    few % (as with any load or constraint)."""
     deck, top = _bar()
     run = Run(deck)
     k = [run.index(int(t)) for t in top]
@@ -70,7 +70,7 @@ def test_step_load_on_a_bar_overshoots_twice_the_static_displacement():
         span += r.state.dt
 
     run.run_to(8.0, every=every)
-    assert abs(u_max / (2.0 * u_static) - 1.0) < 0.02, u_max / u_static
+    assert abs(u_max / (2.0 * u_static) - 1.0) < 0.03, u_max / u_static
     assert abs(u_sum / span / u_static - 1.0) < 0.02, u_sum / span / u_static
     e = run.energies()
     u_end = float(run.state.x[k, 2].mean() - length)

@@ -94,8 +94,8 @@ def test_rigid_body_settles_on_the_floor():
     on the floor within the penalty's static penetration (M g / (9 k) = 27 g dt0^2 /
     (9 * 0.1); bound 2x), its impact penetration is below v_impact / omega (omega dt0 =
     sqrt(0.1 * 9 / 27), the nine bottom nodes of 27 on the floor), and the energy
-    balance closes to 1e-6 (the penalty's stored and dissipated energy is the contact
-    energy)."""
+    balance closes to 5e-6 (measured 7e-7; the penalty's stored and dissipated energy
+    is the contact energy)."""
     deck = base_deck(END)
     add_block(deck, pid=2, size=10.0, h=5.0, z0=0.5, rigid=True, e=0.05,
               inertia_tm=3.0e-3)
@@ -113,8 +113,8 @@ def test_rigid_body_settles_on_the_floor():
     v_impact = np.sqrt(2.0 * G * 0.5)
     assert low > -v_impact * np.sqrt(dt0_sq) / np.sqrt(0.1 * 9 / 27)
     e = run.energies()
-    assert abs(e["energy_ratio"] - 1.0) < 1e-6, e
-    assert abs(e["contact"] - e["external_work"]) < 1e-6 * e["external_work"]
+    assert abs(e["energy_ratio"] - 1.0) < 5e-6, e
+    assert abs(e["contact"] - e["external_work"]) < 5e-6 * e["external_work"]
 
 
 def _slide(rigid: bool, fric: float, speed: float, g: float):  # noqa: ANN202
