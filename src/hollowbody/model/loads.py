@@ -65,8 +65,8 @@ class RigidWallDef:
     tail: (3,) mm a point of the wall; normal: (3,) unit vector from tail to head,
     pointing to the side the nodes are kept on. fric: 0 frictionless, (0, 1)
     Coulomb coefficient, 1 no sliding. birth / death (ms): when the wall acts.
-    rwksf: scale of the penalty stiffness used on rigid-body nodes. offset: kept as
-    read (see docs/loads.md).
+    rwksf: scale of the penalty stiffness used on rigid-body nodes. offset (mm): > 0,
+    only the nodes starting within this distance in front of the wall are slaves.
     """
 
     rwid: int

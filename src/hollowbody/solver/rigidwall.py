@@ -56,8 +56,13 @@ class RigidWallTerm:
         self.tail = np.asarray(wall.tail, dtype=float)
         x0 = plan.node_x0 if plan.node_x0.shape == (model.n_nodes, 3) else model.node_x0
         nodes = np.asarray(wall.nodes, dtype=np.int64)
-        # nodes that start behind the wall are not its slaves (they would be thrown out)
-        nodes = nodes[(x0[nodes] - self.tail) @ self.n >= -1e-9]
+        # nodes that start behind the wall are not its slaves (they would be thrown out);
+        # OFFSET > 0: only the nodes starting within that distance in front of it
+        gap0 = (x0[nodes] - self.tail) @ self.n
+        keep = gap0 >= -1e-9
+        if wall.offset > 0.0:
+            keep &= gap0 <= wall.offset
+        nodes = nodes[keep]
         self.excluded = int(wall.nodes.size - nodes.size)
         self.nodes = nodes[plan.deformable[nodes]]
         self.bodies = []

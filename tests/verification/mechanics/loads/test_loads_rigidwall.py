@@ -169,3 +169,39 @@ def test_no_sliding_and_frictionless():
     run = _slide(True, 0.0, 1.0, 100.0 * G)
     run.run_to(2.0)
     assert abs(run.plan.bodies[0].vel[0] - 1.0) < 1e-12
+
+
+def test_slave_selection_nsidex_offset_death():
+    """NSIDEX removes a block's nodes from the wall (it falls through), OFFSET keeps only
+    the nodes that start within that distance (a block 0.5 mm up with OFFSET 0.1 falls
+    through), DEATH ends the wall (the block standing on it falls after t = 2 ms: it
+    has fallen g (t - 2)^2 / 2 by t = 5 ms, within 10 %: the wall lets go within a
+    step of t = 2 ms and the body starts from its resting penetration), gravity 10x."""
+    g = 10.0 * G
+    deck = base_deck(5.0, g=g)
+    a = add_block(deck, pid=1, size=10.0, h=5.0)
+    b = add_block(deck, pid=3, size=10.0, h=5.0, x0=50.0, first_node=1001, first_elem=1001)
+    deck.add(SetNodeList(sid=5, nodes=b.tolist()))
+    _floor(deck, nsidex=5)
+    run = Run(deck)
+    run.run_to(5.0)
+    za = run.state.x[[run.index(int(i)) for i in a], 2]
+    zb = run.state.x[[run.index(int(i)) for i in b], 2]
+    assert za.min() > -1e-12 and zb.min() < -1.0
+
+    deck = base_deck(5.0, g=g)
+    add_block(deck, pid=1, size=10.0, h=5.0, z0=0.5)
+    _floor(deck, offset=0.1)
+    run = Run(deck)
+    assert run.plan.terms[-1].nodes.size == 0
+    run.run_to(5.0)
+    assert run.state.x[:, 2].min() < -1.0
+
+    deck = base_deck(5.0, g=g)
+    add_block(deck, pid=2, size=10.0, h=5.0, rigid=True, e=0.05)
+    _floor(deck, death=2.0)
+    run = Run(deck)
+    run.run_to(5.0)
+    t = run.state.t
+    drop = 5.0 - run.plan.bodies[0].xc[2]
+    assert abs(drop / (0.5 * g * (t - 2.0) ** 2) - 1.0) < 0.1, drop
