@@ -1,8 +1,8 @@
 """Definitions made by unsupported keywords, so that a reference to one can name it.
 
 A part may refer to a material that the deck defines with a keyword the
-reader keeps as text (``*MAT_NULL``); the builder then says so instead of
-"not defined": ``part 3 refers to material 9, defined by *MAT_NULL at
+reader keeps as text (``*MAT_HONEYCOMB``); the builder then says so instead of
+"not defined": ``part 3 refers to material 9, defined by *MAT_HONEYCOMB at
 deck.k:120, which is not supported``. Only the id of such a keyword is read
 (its first field; the second card for ``*PART``), never its values.
 """

@@ -8,8 +8,9 @@ element under it:
 
 K the bulk modulus of the element's material (``E / (3 (1 - 2 nu))`` for
 elastic, elastic-plastic and rigid materials -- LS-DYNA asks for realistic E
-and PR on *MAT_RIGID precisely because contact uses them -- and ``KM`` for
-MAT_181). A node's stiffness is the mean of the segments around it.
+and PR on *MAT_RIGID precisely because contact uses them -- ``YM`` and ``PR``
+for *MAT_NULL shells, and ``KM`` for MAT_181).
+A node's stiffness is the mean of the segments around it.
 The kernel combines them as LS-DYNA's default penalty option (PENOPT = 1,
 "minimum of master segment and slave node")::
 
@@ -40,7 +41,7 @@ from hollowbody.contact.surface import (
     segment_max_diagonal,
     segment_normals,
 )
-from hollowbody.errors import UserInputError
+from hollowbody.errors import DeckError, UserInputError
 from hollowbody.model.mass import hex_volumes
 from hollowbody.model.model import MaterialDef, Model
 
@@ -58,6 +59,12 @@ def bulk_modulus(mat: MaterialDef) -> float:
         return km
     e = float(p.get("E", 0.0))
     nu = float(p.get("PR", 0.0))
+    if mat.kind == "null":  # *MAT_NULL: LS-DYNA takes the contact stiffness from YM, PR
+        e = float(p.get("YM", 0.0))
+        if e <= 0.0:
+            raise DeckError(f"material {mat.mid}: a contact surface of *MAT_NULL needs YM > 0 "
+                            "and PR (its contact stiffness)", mat.source.file,
+                            mat.source.line, mat.keyword or "MAT_NULL")
     if e <= 0.0:
         raise UserInputError(
             f"material {mat.mid} ({mat.kind}): contact needs a Young's modulus E > 0 "

@@ -51,10 +51,11 @@ def _curve_slope_at_zero(x: np.ndarray, y: np.ndarray) -> float:
 
 
 def moduli(model: Model, pid: int) -> tuple[float, float] | None:
-    """(bulk K, shear G) in GPa of part ``pid``'s material, None for rigid."""
+    """(bulk K, shear G) in GPa of part ``pid``'s material, None for rigid and
+    *MAT_NULL (no stiffness)."""
     mat = model.material_of(pid)
     p = mat.params
-    if mat.kind == "rigid":
+    if mat.kind in ("rigid", "null"):
         return None
     if mat.kind == "rubber181":
         curve = model.curves.get(int(p["LCID"]))
@@ -78,7 +79,7 @@ def solid_wave_speed(model: Model, pid: int) -> float:
 def shell_wave_speed(model: Model, pid: int) -> float:
     """Plate wave speed (mm/ms) of a shell part; 0 for rigid or massless."""
     mat = model.material_of(pid)
-    if mat.kind == "rigid" or mat.density <= 0.0:
+    if mat.kind in ("rigid", "null") or mat.density <= 0.0:
         return 0.0
     if mat.kind == "rubber181":
         km = moduli(model, pid)

@@ -10,17 +10,28 @@ from __future__ import annotations
 import numpy as np
 
 
-def _half_next(state) -> float:  # noqa: ANN001 - State
-    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set)."""
-    return 0.5 * state.dt_next if np.isfinite(state.dt_next) else 0.0
+def _half_step(state) -> float:  # noqa: ANN001 - State
+    """Half the step just taken, dt^n / 2, for the full-step velocity estimates
+    v^{n+1} = v^{n+1/2} + dt^n / 2 a^{n+1}: v^{n+1/2} is the velocity at the middle of
+    that step, t^n + dt^n / 2, whatever the sequence of steps (exact for a constant
+    acceleration, also when the last step was cut to land on the end time). 0 at
+    cycle 0, where the State's velocities are the initial ones."""
+    if state.cycle == 0:
+        return 0.0
+    return 0.5 * state.dt if np.isfinite(state.dt) else 0.0
 
 
 def node_velocity_full_step(plan, state) -> np.ndarray:  # noqa: ANN001
     """v^{n+1} (n, 3) mm/ms estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes);
-    degrees of freedom held by an SPC stay at zero (their force is the reaction)."""
-    v = state.v + _half_next(state) * state.f * state.inv_m[:, None]
+    degrees of freedom held by an SPC stay at zero (their force is the reaction), and
+    nodes on a rigid wall do not move into it (``term.full_step_velocity``)."""
+    v = state.v + _half_step(state) * state.f * state.inv_m[:, None]
     if plan.constraints.any_fixed:
         v[plan.constraints.fixed] = 0.0
+    for term in getattr(plan, "terms", ()):  # velocity constraints (rigid walls)
+        stop = getattr(term, "full_step_velocity", None)
+        if stop is not None:
+            stop(state, v)
     return v
 
 
@@ -30,9 +41,25 @@ def kinetic_energy(plan, state) -> float:  # noqa: ANN001
     d = plan.deformable
     ke = 0.5 * float((state.node_mass[d] * (v[d] ** 2).sum(axis=1)).sum())
     if plan.has_rotations:
-        w = state.w + _half_next(state) * state.mom * state.inv_i[:, None]
+        w = state.w + _half_step(state) * state.mom * state.inv_i[:, None]
         ke += 0.5 * float((state.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
-    return ke + sum(b.kinetic_energy() for b in plan.bodies)
+    half = _half_step(state)
+    return ke + sum(rigid_kinetic_energy(b, half) for b in plan.bodies)
+
+
+def rigid_kinetic_energy(body, half: float) -> float:  # noqa: ANN001 - RigidBody
+    """Kinetic energy (J) of a rigid body at the full step, as for the nodes:
+    V^{n+1/2} + dt/2 F^{n+1} / M and w^{n+1/2} + dt/2 I^{-1} (M^{n+1} - w x I w)
+    (constrained and prescribed components unchanged; ``half`` = dt^{n+1} / 2 ms)."""
+    acc = body.force / body.mass if body.mass > 0.0 else np.zeros(3)
+    acc = np.where(body.fixed_trans | body.prescribed_trans, 0.0, acc)
+    vel = body.vel + half * acc
+    inertia = body.inertia()
+    omega = body.omega
+    if half > 0.0 and np.linalg.det(inertia) > 0.0:
+        alpha = np.linalg.solve(inertia, body.moment - np.cross(omega, inertia @ omega))
+        omega = omega + half * np.where(body.fixed_rot | body.prescribed_rot, 0.0, alpha)
+    return 0.5 * body.mass * float(vel @ vel) + 0.5 * float(omega @ inertia @ omega)
 
 
 def energies(plan, state) -> dict[str, float]:  # noqa: ANN001

@@ -5,6 +5,7 @@
 - ``nodout.csv``  displacement/velocity of *DATABASE_HISTORY_NODE nodes;
 - ``rbdout.csv``  rigid-body displacement, velocity and resultant force;
 - ``spcforc.csv`` total SPC reaction force;
+- ``rwforc.csv``  rigid-wall forces (normal, tangential, components) per wall;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
 - ``d3plot`` (+ ``d3plot01``) the same states for LS-PrePost (optional extra lasso-python; when
@@ -143,7 +144,7 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         f.unlink()
 
 
-HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")
+HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "rwforc")
 
 
 class RunOutputs:
@@ -167,7 +168,8 @@ class RunOutputs:
         req = model.output.intervals
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
-                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout")}
+                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout",
+                                    "rwforc")}
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
@@ -201,6 +203,9 @@ class RunOutputs:
         self.matsum = HistoryWriter(self.out / "matsum.csv", [
             "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"],
             pos.get("matsum"))
+        self.rwforc = HistoryWriter(self.out / "rwforc.csv", [
+            "time [ms]", "wall", "normal [kN]", "tangential [kN]", "fx [kN]", "fy [kN]",
+            "fz [kN]"], pos.get("rwforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
         if resume is not None:
@@ -264,6 +269,9 @@ class RunOutputs:
                 self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
         if self.clocks["spcforc"].due(t) or force:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
+        if self.clocks["rwforc"].due(t) or force:
+            for w in (tm for tm in getattr(self.asm, "terms", ()) if hasattr(tm, "rwid")):
+                self.rwforc.write([t, w.rwid, w.normal_force(), w.tangential_force(), *w.force])
         if self.clocks["matsum"].due(t) or force:
             self._write_matsum(state)
         if (self.vtk is not None or self.d3plot is not None) and \

@@ -107,6 +107,11 @@ def assemble(model: Model) -> Assembly:
         asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
         if mat.kind == "rigid":
             continue
+        if mat.kind == "null":  # [loads] *MAT_NULL solids are fluids: they need an *EOS
+            raise DeckError(f"material {mat.mid} (*MAT_NULL) of part {g.pid}: solid elements "
+                            "of *MAT_NULL need an equation of state (*EOS), which is not "
+                            "supported; *MAT_NULL is supported on shells (contact surfaces)",
+                            mat.source.file, mat.source.line, mat.keyword or None)
         if mat.kind not in ("elastic", "rubber181"):
             raise DeckError(f"material {mat.mid} ({mat.keyword or mat.kind}) of part {g.pid} "
                             "is not available for solid elements", mat.source.file,
@@ -121,7 +126,7 @@ def assemble(model: Model) -> Assembly:
         mat = model.material_of(g.pid)
         elem_mass = mat.density * quad_areas(g.conn, x0) * g.thickness.mean(axis=1)
         asm.part_share[g.pid] = _part_share(n, g.conn, elem_mass)
-        if mat.kind == "rigid":
+        if mat.kind in ("rigid", "null"):  # [loads] null shells: mass, no element forces
             continue
         try:
             from hollowbody.elements.shell_group import ShellGroupRuntime, drilling_factor

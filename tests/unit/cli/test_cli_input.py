@@ -56,14 +56,14 @@ def test_unsupported_keywords_go_to_messages_log_and_summary_not_to_python_warni
 def test_a_part_whose_material_is_an_unsupported_keyword_names_it(tmp_path, capsys):
     text = (DECKS / "hand_check.k").read_text().replace(
         "*MAT_ELASTIC\n         3   7.85e-6     210.0       0.3",
-        "*MAT_NULL\n         3   7.85e-6", 1)
+        "*MAT_HONEYCOMB\n         3   7.85e-6", 1)
     deck = tmp_path / "deck.k"
     deck.write_text(text)
-    line = text.splitlines().index("*MAT_NULL") + 1
+    line = text.splitlines().index("*MAT_HONEYCOMB") + 1
     assert main(["check", str(deck)]) == 2
     err = capsys.readouterr().err.strip()
     assert err == (f"hollowbody check: error: {deck}:20: *PART: part 3 refers to material 3, "
-                   f"defined by *MAT_NULL at {deck}:{line}, which is not supported")
+                   f"defined by *MAT_HONEYCOMB at {deck}:{line}, which is not supported")
 
 
 def test_an_element_whose_part_is_an_unsupported_keyword_names_it(tmp_path, capsys):
