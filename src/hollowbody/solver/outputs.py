@@ -242,6 +242,8 @@ class RunOutputs:
                     self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *state.v[i]])
         if self.clocks["rbdout"].due(t) or force:
             for b in self.asm.bodies:
+                if getattr(b, "iprt", 0) == 2:  # a nodal rigid body's IPRT = 2: not written
+                    continue
                 self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
         if self.clocks["spcforc"].due(t) or force:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])

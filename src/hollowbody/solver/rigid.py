@@ -9,8 +9,15 @@ force and moment, and the body is advanced with the same central-difference
 step as the nodes:
 
     V^{n+1/2} = V^{n-1/2} + dt * F / M
-    w^{n+1/2} = w^{n-1/2} + dt * I^{-1} (Mc - w x I w)      (I = R I0 R^T)
+    L^{n-1/2} = I(R^{n-1}) w^{n-1/2};   L^{n+1/2} = L^{n-1/2} + dt * Mc
+    w^{n+1/2} = I(R^n)^{-1} L^{n+1/2}                        (I(R) = R I0 R^T)
     xc^{n+1}  = xc^n + dt V^{n+1/2};   R^{n+1} = exp(dt [w^{n+1/2}]x) R^n
+
+The rotation is advanced through the spatial angular momentum L (Euler's
+equation dL/dt = Mc in the global frame), so a torque-free body keeps L to
+round-off; ``rot_w`` is the rotation R^{n-1} at which the current w was made
+(w^{n-1/2} = I(R^{n-1})^{-1} L^{n-1/2}). The kinetic energy of a tumbling body
+is not exactly conserved by this explicit update (its error is first order in dt).
 
 Constraints (*MAT_RIGID CMO = +1, CON1 / CON2 in global axes, or a nodal
 rigid body's _SPC card) zero the corresponding components of V and w. Mass
@@ -44,7 +51,8 @@ class RigidBody:
     """State of one rigid body (see module docstring for the symbols)."""
 
     #: time-varying attributes (saved by the run's State)
-    STATE_FIELDS = ("xc", "rot", "vel", "omega", "force", "moment", "vel_free", "omega_free")
+    STATE_FIELDS = ("xc", "rot", "vel", "omega", "force", "moment", "vel_free", "omega_free",
+                    "rot_w")
 
     pid: int
     nodes: np.ndarray  # (k,) int64 node indices
@@ -67,6 +75,8 @@ class RigidBody:
     kind: str = "part"  # "part" (*MAT_RIGID parts) or "nodal" (nodal rigid body)
     iprt: int = 0  # 2: not written to rbdout
     pnode: int = -1  # node index kept at the centre of mass (-1: none)
+    #: (3, 3) rotation at which omega was last updated (None: ``rot``)
+    rot_w: np.ndarray | None = None
 
     def inertia(self) -> np.ndarray:
         return self.rot @ self.inertia0 @ self.rot.T
@@ -103,13 +113,15 @@ class RigidBody:
         self.omega_free = self.omega.copy()
         inertia = self.inertia()
         if np.any(np.diag(inertia) > 0.0):
-            gyro = np.cross(self.omega, inertia @ self.omega)
-            alpha = np.linalg.solve(inertia, self.moment - gyro)
-            self.omega_free = self.omega + dt * alpha
+            rw = self.rot if self.rot_w is None else self.rot_w
+            ang = (rw @ self.inertia0 @ rw.T) @ self.omega  # L^{n-1/2}
+            delta = np.linalg.solve(inertia, ang + dt * self.moment) - self.omega
+            self.omega_free = self.omega + delta
             self.omega_free[self.fixed_rot] = 0.0
-            alpha[self.fixed_rot | self.prescribed_rot] = 0.0
-            self.omega = self.omega + dt * alpha
+            delta[self.fixed_rot | self.prescribed_rot] = 0.0
+            self.omega = self.omega + delta
         self.omega[self.fixed_rot] = 0.0
+        self.rot_w = self.rot.copy()
 
     def advance_position(self, dt: float, x: np.ndarray) -> None:
         """Move the centre and rotation over dt and place the body's nodes in x."""

@@ -22,7 +22,8 @@ import numpy as np
 from numba import njit
 
 #: RigidBody attributes stored as rows of the set's arrays (name, trailing shape, dtype)
-_VIEWS = (("xc", (3,), np.float64), ("rot", (3, 3), np.float64), ("vel", (3,), np.float64),
+_VIEWS = (("xc", (3,), np.float64), ("rot", (3, 3), np.float64), ("rot_w", (3, 3), np.float64),
+          ("vel", (3,), np.float64),
           ("omega", (3,), np.float64), ("force", (3,), np.float64),
           ("moment", (3,), np.float64), ("vel_free", (3,), np.float64),
           ("omega_free", (3,), np.float64), ("inertia0", (3, 3), np.float64),
@@ -58,10 +59,12 @@ def _gather(x, f, mom, nodes, offsets, xc, force, moment):  # noqa: ANN001, ANN2
 
 
 @njit(cache=True)
-def _advance_velocity(dt, mass, inertia0, rot, force, moment, vel, omega, vel_free,  # noqa: ANN001
-                      omega_free, fixed_t, fixed_r, presc_t, presc_r, inertia):  # noqa: ANN001
+def _advance_velocity(dt, mass, inertia0, rot, rot_w, force, moment, vel, omega,  # noqa: ANN001
+                      vel_free, omega_free, fixed_t, fixed_r, presc_t, presc_r,  # noqa: ANN001
+                      inertia):  # noqa: ANN001
     """V, w of every body from t^{n-1/2} to t^{n+1/2} (RigidBody.advance_velocity);
-    ``inertia`` (b, 3, 3) receives R I0 R^T (kg*mm^2)."""
+    ``inertia`` (b, 3, 3) receives R I0 R^T (kg*mm^2); rot_w becomes rot."""
+    iw = np.empty((3, 3))
     for b in range(mass.size):
         for k in range(3):
             acc = force[b, k] / mass[b] if mass[b] > 0.0 else 0.0
@@ -82,13 +85,20 @@ def _advance_velocity(dt, mass, inertia0, rot, force, moment, vel, omega, vel_fr
         for k in range(3):
             omega_free[b, k] = omega[b, k]
         if inertia[b, 0, 0] > 0.0 or inertia[b, 1, 1] > 0.0 or inertia[b, 2, 2] > 0.0:
+            # L^{n-1/2} = I(R_w) w with R_w the rotation of the last velocity update
             w0, w1, w2 = omega[b, 0], omega[b, 1], omega[b, 2]
-            h0 = inertia[b, 0, 0] * w0 + inertia[b, 0, 1] * w1 + inertia[b, 0, 2] * w2
-            h1 = inertia[b, 1, 0] * w0 + inertia[b, 1, 1] * w1 + inertia[b, 1, 2] * w2
-            h2 = inertia[b, 2, 0] * w0 + inertia[b, 2, 1] * w1 + inertia[b, 2, 2] * w2
-            c0 = moment[b, 0] - (w1 * h2 - w2 * h1)
-            c1 = moment[b, 1] - (w2 * h0 - w0 * h2)
-            c2 = moment[b, 2] - (w0 * h1 - w1 * h0)
+            for i in range(3):
+                for j in range(3):
+                    s = 0.0
+                    for p in range(3):
+                        rp = 0.0
+                        for q in range(3):
+                            rp += inertia0[b, p, q] * rot_w[b, j, q]
+                        s += rot_w[b, i, p] * rp
+                    iw[i, j] = s
+            c0 = iw[0, 0] * w0 + iw[0, 1] * w1 + iw[0, 2] * w2 + dt * moment[b, 0]
+            c1 = iw[1, 0] * w0 + iw[1, 1] * w1 + iw[1, 2] * w2 + dt * moment[b, 1]
+            c2 = iw[2, 0] * w0 + iw[2, 1] * w1 + iw[2, 2] * w2 + dt * moment[b, 2]
             a = inertia[b]
             # adjugate solve of a alpha = c
             k00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
@@ -101,18 +111,22 @@ def _advance_velocity(dt, mass, inertia0, rot, force, moment, vel, omega, vel_fr
             k21 = a[0, 1] * a[2, 0] - a[0, 0] * a[2, 1]
             k22 = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
             det = a[0, 0] * k00 + a[0, 1] * k10 + a[0, 2] * k20
-            al0 = (k00 * c0 + k01 * c1 + k02 * c2) / det
-            al1 = (k10 * c0 + k11 * c1 + k12 * c2) / det
-            al2 = (k20 * c0 + k21 * c1 + k22 * c2) / det
+            # w^{n+1/2} = I(R^n)^{-1} L^{n+1/2}; held and prescribed components keep w
+            al0 = (k00 * c0 + k01 * c1 + k02 * c2) / det - w0
+            al1 = (k10 * c0 + k11 * c1 + k12 * c2) / det - w1
+            al2 = (k20 * c0 + k21 * c1 + k22 * c2) / det - w2
             for k in range(3):
-                alpha = al0 if k == 0 else (al1 if k == 1 else al2)
-                omega_free[b, k] = 0.0 if fixed_r[b, k] else omega[b, k] + dt * alpha
+                delta = al0 if k == 0 else (al1 if k == 1 else al2)
+                omega_free[b, k] = 0.0 if fixed_r[b, k] else omega[b, k] + delta
                 if fixed_r[b, k] or presc_r[b, k]:
-                    alpha = 0.0
-                omega[b, k] = omega[b, k] + dt * alpha
+                    delta = 0.0
+                omega[b, k] = omega[b, k] + delta
         for k in range(3):
             if fixed_r[b, k]:
                 omega[b, k] = 0.0
+        for i in range(3):
+            for j in range(3):
+                rot_w[b, i, j] = rot[b, i, j]
 
 
 @njit(cache=True)
@@ -182,6 +196,8 @@ class RigidBodySet:
             setattr(self, name, arr)
             for k, b in enumerate(self.bodies):
                 cur = getattr(b, name, None)
+                if cur is None and name == "rot_w":
+                    cur = b.rot  # not updated yet: w belongs to the current rotation
                 if cur is not None:
                     arr[k] = cur
                 view = arr[k]
@@ -223,7 +239,8 @@ class RigidBodySet:
     def advance_velocity(self, dt: float) -> None:
         """Every body's V, w to t^{n+1/2} (RigidBody.advance_velocity)."""
         self.adopt()
-        _advance_velocity(dt, self.mass, self.inertia0, self.rot, self.force, self.moment,
+        _advance_velocity(dt, self.mass, self.inertia0, self.rot, self.rot_w, self.force,
+                          self.moment,
                           self.vel, self.omega, self.vel_free, self.omega_free,
                           self.fixed_trans, self.fixed_rot, self.prescribed_trans,
                           self.prescribed_rot, self.inertia)
