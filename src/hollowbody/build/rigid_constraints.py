@@ -82,21 +82,22 @@ def _merges(b, model: Model) -> list[RigidMerge]:  # noqa: ANN001
         _rigid_part(model, pid, it, "PIDS: part")
         if lead == pid:
             raise item_error(it, f"part {pid} is constrained to itself")
-        if pid in lead_by and lead_by[pid][0] != lead:
+        if pid in lead_by:
+            if lead_by[pid][0] == lead:
+                continue  # the same pair again
             first = lead_by[pid][1].source
             raise item_error(it, f"part {pid} is already constrained to part "
                              f"{lead_by[pid][0]} (at {first}); a part joins one lead only")
         lead_by[pid] = (lead, it)
+        cur, chain = lead, [pid, lead]
+        while cur in lead_by:  # the pair closes a cycle A <- B <- ... <- A
+            cur = lead_by[cur][0]
+            if cur == pid:
+                raise item_error(it, f"parts {sorted(set(chain))} are constrained to each "
+                                 "other in a cycle: one of them must lead")
+            chain.append(cur)
         out.append(RigidMerge(lead, pid, _flag(it, it.iflag), it.source,
                               it.keyword_line().lstrip("*")))
-    for pid, (_, it) in lead_by.items():  # cycles: A <- B <- A
-        seen, cur = {pid}, pid
-        while cur in lead_by:
-            cur = lead_by[cur][0]
-            if cur in seen:
-                raise item_error(it, f"parts {sorted(seen)} are constrained to each other in "
-                                 "a cycle: one of them must lead")
-            seen.add(cur)
     return out
 
 
