@@ -23,6 +23,7 @@ from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     BoundarySpcNode,
     BoundarySpcSet,
+    ConstrainedNodalRigidBodyKeyword,
     Contact,
     ControlBulkViscosity,
     ControlContact,
@@ -430,6 +431,7 @@ def _spcs(b: _Builder, model: m.Model) -> list[m.NodalSPC]:
 
 def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
     out = []
+    nodal_pids = {it.pid for it in b.of(ConstrainedNodalRigidBodyKeyword)}
     for it in b.of(PrescribedMotionKeyword):
         if it.dof not in _MOTION_DOFS:
             raise _err(it, f"DOF={it.dof} is not supported (1, 2, 3 translations; 5, 6, 7 "
@@ -442,6 +444,9 @@ def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
         kw = dict(dof=it.dof, vad=it.vad, lcid=it.lcid, sf=_or(it.sf, 1.0), birth=it.birth,
                   death=_or(it.death, 1.0e28), source=it.source)
         if isinstance(it, PrescribedMotionRigid):
+            if it.pid in nodal_pids:  # a nodal rigid body (build.rigid_constraints)
+                out.append(m.PrescribedMotion("rigid", pid=it.pid, **kw))
+                continue
             if it.pid not in model.parts:
                 raise _err(it, f"prescribed motion refers to part {it.pid} which is not defined")
             if model.material_of(it.pid).kind != "rigid":

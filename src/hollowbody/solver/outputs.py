@@ -276,8 +276,10 @@ class RunOutputs:
         """Kinetic energy (J) per part: rigid bodies exactly, other parts from their
         share of the lumped nodal masses at full-step velocities."""
         v = node_velocity_full_step(self.asm, state)
-        bodies = {b.pid: b for b in self.asm.bodies}
-        return {pid: bodies[pid].kinetic_energy() if pid in bodies else
+        # a body's kinetic energy goes to its lead part (parts merged into it: 0)
+        bodies = {p: b for b in self.asm.bodies for p in (b.pids or [b.pid])}
+        return {pid: (bodies[pid].kinetic_energy() if bodies[pid].pid == pid else 0.0)
+                if pid in bodies else
                 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
                 for pid, share in self.asm.part_share.items()}
 
