@@ -4,9 +4,10 @@
 *CONSTRAINED_NODAL_RIGID_BODY(_SPC, _INERTIA) -> ``model.nodal_rigid_bodies``,
 *CONSTRAINED_EXTRA_NODES_NODE/_SET -> ``model.extra_nodes``. Every reference is
 checked, and so is the rule that a node belongs to at most one rigid body: a
-node of two bodies that are not merged, an SPC or a nodal prescribed motion on
-a node of a rigid body (the body moves it, the constraint would be silently
-ignored) are DeckErrors at the card that makes the conflict, naming both.
+node of two bodies that are not merged and a nodal prescribed motion on a node
+of a rigid body (the body moves it, the motion would be silently ignored) are
+DeckErrors at the card that makes the conflict, naming both. An SPC on a node of
+a rigid body holds the body (:mod:`hollowbody.model.rigid_bodies`).
 Mass properties: :mod:`hollowbody.model.rigid_bodies`.
 """
 
@@ -17,15 +18,12 @@ import numpy as np
 from hollowbody.build.common import item_error
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
-    BoundarySpcNode,
-    BoundarySpcSet,
     ConstrainedExtraNodesNode,
     ConstrainedExtraNodesSet,
     ConstrainedNodalRigidBodyKeyword,
     ConstrainedRigidBodies,
     ConstrainedRigidBodiesSet,
     KeywordItem,
-    Nodes,
     PrescribedMotionNode,
     PrescribedMotionSet,
 )
@@ -39,8 +37,7 @@ from hollowbody.model.rigid_constraints import (
     RigidMerge,
 )
 
-_HOLD = ("constrain the body instead: *MAT_RIGID CMO/CON1/CON2, "
-         "*CONSTRAINED_NODAL_RIGID_BODY_SPC or *BOUNDARY_PRESCRIBED_MOTION_RIGID")
+_HOLD = "prescribe the body's motion instead: *BOUNDARY_PRESCRIBED_MOTION_RIGID with its PID"
 
 
 def build(b, model: Model) -> None:  # noqa: ANN001 - builder.Builder
@@ -239,40 +236,22 @@ def _ownership(model: Model) -> tuple[np.ndarray, list[str], list]:
 
 def _no_nodal_constraints(b, model: Model, owner: np.ndarray,  # noqa: ANN001
                           labels: list[str]) -> None:
-    """An SPC or a nodal prescribed motion on a node of a rigid body is a DeckError."""
+    """A nodal prescribed motion on a node of a rigid body is a DeckError (SPCs on them
+    hold the body instead: :func:`hollowbody.model.rigid_bodies.rigid_body_defs`)."""
     if not labels:
         return
 
-    def check(item: KeywordItem, nodes: np.ndarray, what: str, line: int | None = None) -> None:
+    def check(item: KeywordItem, nodes: np.ndarray) -> None:
         nodes = np.asarray(nodes, dtype=np.int64).reshape(-1)
         on = np.flatnonzero(owner[nodes] >= 0)
         if on.size:
             i = int(nodes[on[0]])
-            raise item_error(item, f"{what} on node {int(model.node_ids[i])}, which is on "
-                             f"{labels[int(owner[i])]}: the body moves its nodes and would "
-                             f"ignore it; {_HOLD}", line)
+            raise item_error(item, f"a prescribed motion on node {int(model.node_ids[i])}, "
+                             f"which is on {labels[int(owner[i])]}: the body moves its nodes "
+                             f"and would ignore it; {_HOLD}")
 
-    for it in b.of(BoundarySpcNode):
-        if any(it.dofs()):
-            check(it, b.index([it.nid])[0], "an SPC")
-    for it in b.of(BoundarySpcSet):
-        if any(it.dofs()) and it.nsid in model.node_sets:
-            check(it, model.node_sets[it.nsid], "an SPC")
-    for it in b.of(Nodes):
-        if it.tc is None and it.rc is None:
-            continue
-        zero = np.zeros_like(it.ids)
-        codes = np.column_stack([zero if it.tc is None else it.tc,
-                                 zero if it.rc is None else it.rc])
-        rows = np.flatnonzero(codes.any(axis=1))
-        idx = b.index(it.ids[rows])[0]
-        bad = np.flatnonzero(owner[idx] >= 0)
-        if bad.size:
-            r = int(rows[bad[0]])
-            line = int(it.row_lines[r]) if getattr(it, "row_lines", None) is not None else None
-            check(it, idx[bad[:1]], "a TC/RC constraint", line)
     for it in b.of(PrescribedMotionNode):
-        check(it, b.index([it.nid])[0], "a prescribed motion")
+        check(it, b.index([it.nid])[0])
     for it in b.of(PrescribedMotionSet):
         if it.nsid in model.node_sets:
-            check(it, model.node_sets[it.nsid], "a prescribed motion")
+            check(it, model.node_sets[it.nsid])

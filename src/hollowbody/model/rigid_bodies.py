@@ -61,6 +61,8 @@ class RigidBodyDef:
     fixed_rot: np.ndarray = field(default_factory=lambda: np.zeros(3, dtype=bool))
     pnode: int = -1
     iprt: int = 0
+    #: what the definition changed that the user should know (SPCs moved to the body)
+    notes: list[str] = field(default_factory=list)
 
     def principal_inertia(self) -> np.ndarray:
         """(3,) kg*mm^2 principal moments about the centre, ascending."""
@@ -238,10 +240,38 @@ def rigid_body_defs(model: Model, node_mass: np.ndarray,
         if body is not None:
             out.append(body)
     out += [_nodal_body(model, nrb, node_mass, x0) for nrb in model.nodal_rigid_bodies]
+    _spcs_to_bodies(model, out)
     for b in out:
         b.vel[b.fixed_trans] = 0.0
         b.omega[b.fixed_rot] = 0.0
     return out
+
+
+def _spcs_to_bodies(model: Model, bodies: list[RigidBodyDef]) -> None:
+    """An SPC on a node of a rigid body holds the body: its translational DOFs the
+    centre's translations, its rotational DOFs the body's rotations (global axes),
+    as LS-DYNA converts nodal SPCs on rigid bodies. Noted in ``notes``."""
+    if not bodies or not model.spcs:
+        return
+    owner = np.full(model.n_nodes, -1, dtype=np.int64)
+    for k, b in enumerate(bodies):
+        owner[b.nodes] = k
+    for spc in model.spcs:
+        nodes = np.asarray(spc.nodes, dtype=np.int64)
+        dofs = np.asarray(spc.dofs, dtype=bool)
+        on = np.flatnonzero((owner[nodes] >= 0) & dofs.any(axis=1))
+        for k in np.unique(owner[nodes[on]]).tolist():
+            rows = on[owner[nodes[on]] == k]
+            held = dofs[rows].any(axis=0)
+            b = bodies[k]
+            b.fixed_trans |= held[:3]
+            b.fixed_rot |= held[3:6]
+            axes = [n for n, h in zip(("x", "y", "z", "rx", "ry", "rz"), held) if h]
+            b.notes.append(f"{spc.source}: SPC on {rows.size} node(s) of rigid body {b.pid} "
+                           f"(first: node {int(model.node_ids[nodes[rows[0]]])}): the body's "
+                           f"{', '.join(axes)} held at its centre of mass (as LS-DYNA "
+                           "converts nodal SPCs on rigid bodies; prefer *MAT_RIGID CON1/CON2 "
+                           "or *CONSTRAINED_NODAL_RIGID_BODY_SPC)")
 
 
 def rigid_body_summary(model: Model, node_mass: np.ndarray,

@@ -28,6 +28,7 @@ every body); the methods below advance one body alone and give the same values.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -143,6 +144,8 @@ def build_rigid_bodies(model: Model, node_mass: np.ndarray,
     x0_all = model.node_x0 if node_x0 is None else node_x0
     bodies = []
     for d in rigid_body_defs(model, node_mass, x0_all):
+        for note in d.notes:
+            warnings.warn(note, UserWarning, stacklevel=2)
         r = x0_all[d.nodes] - d.centre
         if d.pnode >= 0:
             r[np.searchsorted(d.nodes, d.pnode)] = 0.0

@@ -27,11 +27,13 @@ EXTRA_CARDS = {
               "part 3 is already constrained to part 2"),
     "extra_not_rigid": ("*CONSTRAINED_EXTRA_NODES_NODE\n77,31\n",
                         "CONSTRAINED_EXTRA_NODES_NODE", "PID: part 77 is not a defined part"),
-    "spc_on_body": ("*BOUNDARY_SPC_NODE\n41,0,1,1,1\n", "BOUNDARY_SPC_NODE",
-                    "an SPC on node 41, which is on nodal rigid body 100"),
     "motion_on_body": ("*DEFINE_CURVE\n5\n0,1\n1,1\n*BOUNDARY_PRESCRIBED_MOTION_NODE\n"
                        "32,1,0,5\n", "BOUNDARY_PRESCRIBED_MOTION_NODE",
                        "a prescribed motion on node 32, which is on rigid body 1"),
+    "motion_on_set": ("*DEFINE_CURVE\n5\n0,1\n1,1\n*SET_NODE_LIST\n600\n41,42\n"
+                      "*BOUNDARY_PRESCRIBED_MOTION_SET\n600,3,0,5\n",
+                      "BOUNDARY_PRESCRIBED_MOTION_SET",
+                      "a prescribed motion on node 41, which is on nodal rigid body 100"),
     "release": ("*CONSTRAINED_NODAL_RIGID_BODY\n400,0,100,0,0,1\n",
                 "CONSTRAINED_NODAL_RIGID_BODY", "DRFLAG=1/RRFLAG=0"),
     "no_mass": ("*SET_NODE_LIST\n500\n1\n*CONSTRAINED_NODAL_RIGID_BODY_INERTIA\n500,0,500\n"

@@ -13,9 +13,11 @@ _SPC card the same body moves sideways (the constraint is what holds it).
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from hollowbody.build import build_model
 from hollowbody.io.keyword import (
+    BoundarySpcNode,
     BoundarySpcSet,
     ConstrainedNodalRigidBody,
     ConstrainedNodalRigidBodySpc,
@@ -32,7 +34,7 @@ from hollowbody.io.keyword import (
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import init_state
 from hollowbody.solver.step import start, step
-from hollowbody.testing.rigid_decks import HEX
+from hollowbody.testing.rigid_decks import HEX, assembly_deck
 
 
 def _deck(spc: bool) -> Deck:
@@ -89,3 +91,23 @@ def test_held_dofs_stay_zero_under_load():
 def test_without_spc_the_body_moves_sideways():
     _, _, _, worst = _run(spc=False)
     assert worst["v"] > 0.1 and worst["xy"] > 0.01
+
+
+def test_spc_on_a_node_of_a_rigid_body_holds_the_body():
+    """As LS-DYNA converts nodal SPCs on rigid bodies: the SPC's translations hold the
+    centre, its rotations the body's rotation (global axes), with a warning."""
+    deck = assembly_deck(end=2.0)
+    deck.add(BoundarySpcNode(nid=41, dofx=1, dofry=1))
+    model = build_model(deck)
+    with pytest.warns(UserWarning, match="SPC on 1 node.* of rigid body 100 .* x, ry held"):
+        plan = assemble(model)
+    state = init_state(model, plan)
+    start(model, plan, state)
+    body = next(b for b in plan.bodies if b.pid == 100)
+    assert body.fixed_trans.tolist() == [True, False, False]
+    assert body.fixed_rot.tolist() == [False, True, False]
+    x0 = body.xc.copy()
+    for _ in range(50):
+        step(model, plan, state, state.dt_next)
+    assert body.vel[0] == 0.0 and body.omega[1] == 0.0 and body.xc[0] == x0[0]
+    assert abs(body.vel[1]) > 0.1 and abs(body.omega[2]) > 0.01  # the others are free
