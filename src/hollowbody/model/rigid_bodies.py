@@ -107,7 +107,8 @@ def _fitted_velocity(model: Model, nodes: np.ndarray, m: np.ndarray, x0: np.ndar
     r = x0[nodes] - centre
     vel = (m[:, None] * v0).sum(axis=0) / max(float(m.sum()), 1e-300)
     ang = np.cross(r, m[:, None] * (v0 - vel)).sum(axis=0)
-    omega = np.linalg.solve(inertia, ang) if np.linalg.det(inertia) > 0 else np.zeros(3)
+    # pseudo-inverse: no spin about an axis the body has no inertia about (nodes on a line)
+    omega = np.linalg.pinv(inertia, rcond=1e-9) @ ang if np.any(inertia) else np.zeros(3)
     return vel, omega
 
 
@@ -242,9 +243,34 @@ def rigid_body_defs(model: Model, node_mass: np.ndarray,
     out += [_nodal_body(model, nrb, node_mass, x0) for nrb in model.nodal_rigid_bodies]
     _spcs_to_bodies(model, out)
     for b in out:
+        _regularize(b)
         b.vel[b.fixed_trans] = 0.0
         b.omega[b.fixed_rot] = 0.0
     return out
+
+
+#: smallest principal moment of a body, as a fraction of its largest (see _regularize)
+INERTIA_FLOOR = 1.0e-6
+
+
+def _regularize(b: RigidBodyDef) -> None:
+    """A body whose nodes lie on a line (a two-node nodal rigid body) has no inertia
+    about that line and the rotation update cannot invert its tensor: it gets
+    INERTIA_FLOOR x its largest principal moment about that axis (nodal forces have
+    no moment about the line, so this only keeps the update defined). Noted."""
+    inertia = 0.5 * (b.inertia + b.inertia.T)
+    lam, vec = np.linalg.eigh(inertia)
+    floor = INERTIA_FLOOR * lam[-1]
+    low = lam < floor
+    if lam[-1] <= 0.0 or not low.any():
+        return
+    for k in np.flatnonzero(low):
+        inertia = inertia + (floor - lam[k]) * np.outer(vec[:, k], vec[:, k])
+    b.inertia = inertia
+    b.notes.append(f"rigid body {b.pid}: its nodes lie on a line (principal moment "
+                   f"{lam[0]:.3g} kg*mm^2); the moment about that axis is set to "
+                   f"{floor:.3g} kg*mm^2 ({INERTIA_FLOOR:g} x the largest) so that its "
+                   "rotation stays defined")
 
 
 def _spcs_to_bodies(model: Model, bodies: list[RigidBodyDef]) -> None:

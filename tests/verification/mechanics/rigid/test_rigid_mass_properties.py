@@ -159,3 +159,33 @@ def test_nodal_inertia_replaces_the_lumped_masses():
     _close(nrb.xc, np.asarray(NRB[44][0]))  # NODEID gives the centre
     _close(nrb.inertia0, np.array([[10.0, 1.0, 0.0], [1.0, 20.0, 0.0], [0.0, 0.0, 30.0]]))
     assert nrb.vel.tolist() == [2.0, 0.0, -1.0] and nrb.omega.tolist() == [0.0, 0.0, 0.05]
+
+
+def test_two_node_body_gets_an_inertia_floor_and_runs():
+    """Two point masses have no inertia about their line: the run gives that axis
+    1e-6 x the largest moment (warned), and the body tumbles without NaN, its
+    nodes 10 mm apart (1e-12 relative)."""
+    from hollowbody.io.keyword import SetNodeList
+    from hollowbody.solver.state import init_state
+    from hollowbody.solver.step import start, step
+
+    deck = assembly_deck(extra=False, nrb=False)
+    deck.add_nodes(np.array([51, 52]), np.array([[0.0, 50.0, 0.0], [10.0, 50.0, 0.0]]))
+    deck.add_masses(np.array([51, 52]), np.array([51, 52]), 0.001)
+    deck.add(SetNodeList(sid=200, nodes=[51, 52]))
+    deck.add(ConstrainedNodalRigidBody(pid=200, nsid=200))
+    model = build_model(deck)
+    with pytest.warns(UserWarning, match="rigid body 200: its nodes lie on a line"):
+        plan = assemble(model)
+    body = _body(plan, 200)
+    largest = 0.002 * 25.0  # 2 x 0.001 kg at 5 mm from the centre
+    assert np.linalg.eigvalsh(body.inertia0) == pytest.approx([1e-6 * largest, largest,
+                                                                largest], rel=1e-12)
+    state = init_state(model, plan)
+    start(model, plan, state)
+    for _ in range(200):
+        step(model, plan, state, state.dt_next)
+    x = state.x[body.nodes]
+    assert np.all(np.isfinite(x))
+    assert np.linalg.norm(x[1] - x[0]) == pytest.approx(10.0, rel=1e-12)
+    assert np.abs(body.omega).max() > 0.01  # it tumbles
