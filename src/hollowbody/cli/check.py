@@ -60,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
     if model is None:  # the inventory of what was read, then the error
         summary = deck_inventory(read.deck, "not read" if read.error else "not defined")
         summary.update(deck=args.deck, keywords=read.keywords, problems=[str(error)],
-                       can_run=False, warnings=[], time_step=None, threads=None)
+                       can_run=False, warnings=[], time_step=None, threads=None,
+                       rigid_bodies=[])
         _print(summary, args.json)
         raise error
     summary = summarize(model)
