@@ -114,9 +114,9 @@ def _extra_nodes(b, model: Model) -> list[ExtraNodes]:  # noqa: ANN001
 
 
 def _inertia(b, model: Model, it) -> NodalInertia:  # noqa: ANN001
-    if it.ircs:
-        raise item_error(it, "IRCS=1 (principal inertias in a local system) is not "
-                         "supported; give the inertia tensor in global axes (IRCS=0)")
+    if it.ircs not in (0, 1):
+        raise item_error(it, f"IRCS={it.ircs} must be 0 (global tensor) or 1 (principal "
+                         "moments about local axes)")
     if it.tm <= 0.0:
         raise item_error(it, f"TM={it.tm:g}: the _INERTIA option needs the body's mass TM > 0")
     centre = np.array([it.xc, it.yc, it.zc], dtype=float)
@@ -124,6 +124,8 @@ def _inertia(b, model: Model, it) -> NodalInertia:  # noqa: ANN001
         centre = model.node_x0[b.node_list([it.nodeid], it, "NODEID")[0]].astype(float).copy()
     inertia = np.array([[it.ixx, it.ixy, it.ixz], [it.ixy, it.iyy, it.iyz],
                         [it.ixz, it.iyz, it.izz]], dtype=float)
+    if it.ircs == 1:
+        inertia = _local_inertia(it)
     eig = np.linalg.eigvalsh(inertia)
     if eig[0] < -1e-12 * max(abs(eig[-1]), 1e-300) or eig[-1] <= 0.0:
         raise item_error(it, "the inertia tensor IXX..IZZ is not positive (principal "
@@ -131,6 +133,26 @@ def _inertia(b, model: Model, it) -> NodalInertia:  # noqa: ANN001
     return NodalInertia(centre, float(it.tm), inertia,
                         np.array([it.vtx, it.vty, it.vtz], dtype=float),
                         np.array([it.vrx, it.vry, it.vrz], dtype=float))
+
+
+def _local_inertia(it) -> np.ndarray:  # noqa: ANN001 - nodal rigid body item
+    """IRCS = 1: principal moments IXX, IYY, IZZ (kg*mm^2) about the local axes of
+    XL YL ZL (local x) and XLIP YLIP ZLIP (in the local x-y plane), in global axes:
+    Q diag(IXX, IYY, IZZ) Q^T, Q = [e1 e2 e3] (IXY, IXZ, IYZ are not used)."""
+    if it.cid2:
+        raise item_error(it, f"CID2={it.cid2}: local axes from a coordinate system are not "
+                         "supported; give XL YL ZL and XLIP YLIP ZLIP")
+    e1 = np.array([it.xl, it.yl, it.zl], dtype=float)
+    lip = np.array([it.xlip, it.ylip, it.zlip], dtype=float)
+    e3 = np.cross(e1, lip)
+    if np.linalg.norm(e1) == 0.0 or np.linalg.norm(e3) <= 1e-12 * np.linalg.norm(e1) * \
+            np.linalg.norm(lip):
+        raise item_error(it, "IRCS=1: the local x axis XL YL ZL is zero or parallel to the "
+                         "in-plane vector XLIP YLIP ZLIP")
+    e1 /= np.linalg.norm(e1)
+    e3 /= np.linalg.norm(e3)
+    q = np.column_stack([e1, np.cross(e3, e1), e3])
+    return q @ np.diag([it.ixx, it.iyy, it.izz]) @ q.T
 
 
 def _nodal_bodies(b, model: Model) -> list[NodalRigidBody]:  # noqa: ANN001

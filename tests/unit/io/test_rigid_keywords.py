@@ -45,6 +45,12 @@ held body
 1,7,0
 0.,0.,0.,0.25,0,44
 1.,0.,0.,1.,0.,1.
+*CONSTRAINED_NODAL_RIGID_BODY_INERTIA
+105,0,105
+0.,0.,0.,0.25,1
+1.,0.,0.,2.,0.,3.
+0.,0.,0.,0.,0.,0.
+0.,1.,0.,-1.,0.,0.
 *END
 """
 
@@ -72,6 +78,9 @@ def test_cards_and_defaults():
                                                                       1.0, 0.01)
     both = _items(deck, ConstrainedNodalRigidBodySpcInertia)[0]  # _INERTIA_SPC alias
     assert (both.cmo, both.con1, both.tm, both.nodeid, both.vtx) == (1, 7, 0.25, 44, 0.0)
+    local = _items(deck, ConstrainedNodalRigidBodyInertia)[1]  # IRCS = 1: the axes card
+    assert (local.ircs, local.yl, local.xlip, local.cid2) == (1, 1.0, -1.0, 0)
+    assert ine.ircs == 0 and ine.yl == 0.0  # no axes card without IRCS = 1
 
 
 def test_read_write_read_is_identity():

@@ -5,8 +5,9 @@ PIDC), *CONSTRAINED_RIGID_BODIES_SET (PIDM and a part set),
 *CONSTRAINED_EXTRA_NODES_NODE (PID NID IFLAG) / _SET (PID NSID IFLAG),
 *CONSTRAINED_NODAL_RIGID_BODY with its options _SPC (CMO CON1 CON2 card after
 card 1) and _INERTIA (XC YC ZC TM IRCS NODEID; IXX IXY IXZ IYY IYZ IZZ;
-VTX VTY VTZ VRX VRY VRZ), in either order (_SPC_INERTIA, _INERTIA_SPC), each
-with the _TITLE option (a title card first).
+VTX VTY VTZ VRX VRY VRZ; with IRCS = 1 XL YL ZL XLIP YLIP ZLIP CID2), in either
+order (_SPC_INERTIA, _INERTIA_SPC), each with the _TITLE option (a title card
+first).
 
 Field names are the LS-DYNA ones in lower case, defaults LS-DYNA's (blank =
 0). Units: mm, kg, kg*mm^2, mm/ms, rad/ms. Meaning and validation of the
@@ -91,8 +92,9 @@ class ConstrainedExtraNodesSet(SimpleKeyword):
 
 _NRB_CARD = "pid cid nsid pnode iprt drflag rrflag"
 _SPC_CARD = "cmo con1 con2"
+_AXES_CARD = "xl yl zl xlip ylip zlip cid2"
 _INERTIA_CARDS = ("xc yc zc tm ircs nodeid", "ixx ixy ixz iyy iyz izz",
-                  "vtx vty vtz vrx vry vrz")
+                  "vtx vty vtz vrx vry vrz", _AXES_CARD)
 
 
 @dataclass(kw_only=True)
@@ -133,11 +135,23 @@ class ConstrainedNodalRigidBodyKeyword(SimpleKeyword):
     vrx: float = 0.0
     vry: float = 0.0
     vrz: float = 0.0
+    xl: float = 0.0
+    yl: float = 0.0
+    zl: float = 0.0
+    xlip: float = 0.0
+    ylip: float = 0.0
+    zlip: float = 0.0
+    cid2: int = 0
     title: str = ""
 
     TITLE_ATTR: ClassVar[str | None] = "title"
     has_spc: ClassVar[bool] = False
     has_inertia: ClassVar[bool] = False
+
+    @classmethod
+    def want_card(cls, index: int, values: dict[str, object]) -> bool:
+        """The local-axes card follows the _INERTIA cards only with IRCS = 1."""
+        return cls.CARDS[index] != _AXES_CARD or values.get("ircs", 0) == 1
 
 
 @register
@@ -168,7 +182,9 @@ class ConstrainedNodalRigidBodySpc(ConstrainedNodalRigidBodyKeyword):
 class ConstrainedNodalRigidBodyInertia(ConstrainedNodalRigidBodyKeyword):
     """*CONSTRAINED_NODAL_RIGID_BODY_INERTIA(_TITLE): card 1, then XC YC ZC TM IRCS
     NODEID; IXX IXY IXZ IYY IYZ IZZ (kg*mm^2, about the centre of mass, global
-    axes); VTX VTY VTZ VRX VRY VRZ (optional). One body per keyword."""
+    axes; with IRCS = 1 principal moments IXX, IYY, IZZ about the local axes of
+    the card XL YL ZL XLIP YLIP ZLIP CID2 that follows); VTX VTY VTZ VRX VRY VRZ
+    (optional). One body per keyword."""
 
     KEYWORD: ClassVar[str] = "CONSTRAINED_NODAL_RIGID_BODY_INERTIA"
     CARDS: ClassVar[tuple[str, ...]] = (_NRB_CARD, *_INERTIA_CARDS)

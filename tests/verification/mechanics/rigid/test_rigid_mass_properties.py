@@ -189,3 +189,17 @@ def test_two_node_body_gets_an_inertia_floor_and_runs():
     assert np.all(np.isfinite(x))
     assert np.linalg.norm(x[1] - x[0]) == pytest.approx(10.0, rel=1e-12)
     assert np.abs(body.omega).max() > 0.01  # it tumbles
+
+
+def test_nodal_inertia_with_principal_moments_about_local_axes():
+    """IRCS = 1: principal moments (1, 2, 3) about local axes x' = global y,
+    in-plane vector -x (so z' = x' x (-x) = global z, y' = -x): in global axes the
+    tensor is diag(2, 1, 3)."""
+    deck = assembly_deck(extra=False)
+    for k, it in enumerate(deck.items):
+        if isinstance(it, ConstrainedNodalRigidBody):
+            deck.items[k] = ConstrainedNodalRigidBodyInertia(
+                pid=100, nsid=100, tm=0.5, xc=1.0, ircs=1, ixx=1.0, iyy=2.0, izz=3.0,
+                ixy=0.7, yl=1.0, xlip=-1.0)
+    nrb = _body(assemble(build_model(deck)), 100)
+    _close(nrb.inertia0, np.diag([2.0, 1.0, 3.0]))
