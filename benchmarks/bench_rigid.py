@@ -4,8 +4,9 @@ A model of N free-flying rigid boxes (each a *MAT_RIGID part of 2 x 2 x 2
 hexahedra, 27 nodes, spinning about a non-principal axis), nothing deformable,
 so a cycle is the rigid-body work (resultants, velocity and rotation update,
 node placement) plus the cycle's fixed overhead. Printed: N, cycles, the median
-and mean wall time per cycle and per body-cycle (us), and the share of the
-cycle's fixed overhead measured with N = 1.
+and mean wall time per cycle and per body-cycle (us), the marginal cost of a
+body (N bodies against 1), and for comparison the rigid-body work done one body
+at a time with RigidBody's own methods (the cycle before ``solver.rigid_set``).
 
 Run:  python benchmarks/bench_rigid.py [--bodies 30] [--cycles 2000]
 """
@@ -72,6 +73,29 @@ def per_cycle(n_bodies: int, cycles: int) -> tuple[float, float]:
     return float(np.median(times)), float(times.mean())
 
 
+def per_body_python(n_bodies: int, cycles: int) -> float:
+    """Median wall seconds of the rigid-body work of one cycle done one body at a time
+    with RigidBody's own methods (how the cycle did it before solver.rigid_set)."""
+    model = build_model(rigid_boxes(n_bodies))
+    plan = assemble(model)
+    state = init_state(model, plan)
+    start(model, plan, state)
+    dt, x, v, f, mom = state.dt_next, state.x, state.v, state.f, state.mom
+    times = np.empty(cycles)
+    for k in range(cycles):
+        t0 = time.perf_counter()
+        for body in plan.bodies:
+            body.advance_velocity(dt)
+        x_old = [x[b.nodes].copy() for b in plan.bodies]
+        for body, xr in zip(plan.bodies, x_old):
+            body.advance_position(dt, x)
+            v[body.nodes] = (x[body.nodes] - xr) / dt
+        for body in plan.bodies:
+            body.gather(x, f, mom)
+        times[k] = time.perf_counter() - t0
+    return float(np.median(times))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bodies", type=int, default=30)
@@ -85,6 +109,9 @@ def main() -> None:
     print(f"per body-cycle: median {med * 1e6 / args.bodies:.2f} us, "
           f"mean {mean * 1e6 / args.bodies:.2f} us; "
           f"marginal (N vs 1 body) {(med - one_med) * 1e6 / (args.bodies - 1):.2f} us")
+    py = per_body_python(args.bodies, min(args.cycles, 500))
+    print(f"rigid-body work one body at a time (RigidBody methods): median "
+          f"{py * 1e6 / args.bodies:.2f} us per body-cycle")
 
 
 if __name__ == "__main__":
