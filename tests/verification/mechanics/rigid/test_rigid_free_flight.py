@@ -109,3 +109,47 @@ def test_extra_nodes_and_body_nodes_stay_rigidly_attached():
         assert np.abs(pairs - pairs0[b.pid]).max() < 1e-12 * pairs0[b.pid].max()
     # the extra nodes moved (with the body): not left behind
     assert np.linalg.norm(state.x[extra[0]] - model.node_x0[extra[0]]) > 5.0
+
+
+def test_energy_balance_with_a_deformable_element_hung_on_extra_nodes(tmp_path):
+    """A spinning rigid box carries one face of an elastic cube (its four nodes are
+    extra nodes of the box); the cube's free face swings and deforms it, and its
+    forces on the carried face are gathered by the box. The energy ratio stays within
+    2e-3 of 1 over the run (measured: lowest 0.99941 over 91 cycles at 0.011 rad per
+    step; the explicit rotation update and the element's time integration), and the
+    cube really stores energy (internal energy > 1e-7 J)."""
+    from hollowbody.api import run_model
+    from hollowbody.io.keyword import (
+        ConstrainedExtraNodesSet,
+        ControlTermination,
+        Deck,
+        InitialVelocityGeneration,
+        MatElastic,
+        MatRigid,
+        Part,
+        SectionSolid,
+        SetNodeList,
+    )
+    from hollowbody.testing.rigid_decks import HEX
+
+    deck = Deck()
+    deck.add_nodes(np.arange(1, 9), HEX * [20.0, 10.0, 6.0])
+    deck.add_nodes(np.arange(11, 19), HEX * 10.0 + [30.0, 0.0, 0.0])
+    deck.add_solids(np.array([1]), 1, np.arange(1, 9)[None])
+    deck.add_solids(np.array([2]), 2, np.arange(11, 19)[None])
+    deck.add(SectionSolid(secid=1))
+    deck.add(MatRigid(mid=1, ro=7.8e-6, e=210.0, pr=0.3))
+    deck.add(MatElastic(mid=2, ro=1e-6, e=0.01, pr=0.3))
+    deck.add(Part(pid=1, secid=1, mid=1))
+    deck.add(Part(pid=2, secid=1, mid=2))
+    deck.add(SetNodeList(sid=5, nodes=[11, 14, 15, 18]))  # the cube's x = 30 face
+    deck.add(ConstrainedExtraNodesSet(pid=1, nsid=5))
+    deck.add(InitialVelocityGeneration(id=0, omega=0.2, vx=1.0, xc=10.0, yc=5.0, zc=3.0,
+                                       nx=0.2, ny=1.0, nz=1.0))
+    deck.add(ControlTermination(endtim=5.0))
+    res = run_model(build_model(deck), tmp_path, vtk=False)
+    assert res.status == "normal termination"
+    rows = np.loadtxt(tmp_path / "glstat.csv", delimiter=",", skiprows=1)
+    ratio, internal = rows[:, 9], rows[:, 4]
+    assert np.abs(ratio - 1.0).max() < 2e-3
+    assert internal.max() > 1e-7
