@@ -29,7 +29,7 @@ from hollowbody.io.keyword import (
 )
 from hollowbody.model.mass import part_nodes
 from hollowbody.model.model import Model
-from hollowbody.model.rigid_bodies import CON_AXES, lead_of
+from hollowbody.model.rigid_bodies import CON_AXES, lead_of, local_axes_inertia
 from hollowbody.model.rigid_constraints import (
     ExtraNodes,
     NodalInertia,
@@ -136,23 +136,16 @@ def _inertia(b, model: Model, it) -> NodalInertia:  # noqa: ANN001
 
 
 def _local_inertia(it) -> np.ndarray:  # noqa: ANN001 - nodal rigid body item
-    """IRCS = 1: principal moments IXX, IYY, IZZ (kg*mm^2) about the local axes of
-    XL YL ZL (local x) and XLIP YLIP ZLIP (in the local x-y plane), in global axes:
-    Q diag(IXX, IYY, IZZ) Q^T, Q = [e1 e2 e3] (IXY, IXZ, IYZ are not used)."""
+    """IRCS = 1: principal moments IXX, IYY, IZZ about the local axes of the card
+    XL..ZLIP (:func:`local_axes_inertia`; IXY, IXZ, IYZ are not used)."""
     if it.cid2:
         raise item_error(it, f"CID2={it.cid2}: local axes from a coordinate system are not "
                          "supported; give XL YL ZL and XLIP YLIP ZLIP")
-    e1 = np.array([it.xl, it.yl, it.zl], dtype=float)
-    lip = np.array([it.xlip, it.ylip, it.zlip], dtype=float)
-    e3 = np.cross(e1, lip)
-    if np.linalg.norm(e1) == 0.0 or np.linalg.norm(e3) <= 1e-12 * np.linalg.norm(e1) * \
-            np.linalg.norm(lip):
-        raise item_error(it, "IRCS=1: the local x axis XL YL ZL is zero or parallel to the "
-                         "in-plane vector XLIP YLIP ZLIP")
-    e1 /= np.linalg.norm(e1)
-    e3 /= np.linalg.norm(e3)
-    q = np.column_stack([e1, np.cross(e3, e1), e3])
-    return q @ np.diag([it.ixx, it.iyy, it.izz]) @ q.T
+    try:
+        return local_axes_inertia([it.ixx, it.iyy, it.izz], [it.xl, it.yl, it.zl],
+                                  [it.xlip, it.ylip, it.zlip])
+    except ValueError as exc:
+        raise item_error(it, f"IRCS=1: {exc}") from None
 
 
 def _nodal_bodies(b, model: Model) -> list[NodalRigidBody]:  # noqa: ANN001

@@ -84,6 +84,24 @@ def combine(parts: list[MassProperties]) -> MassProperties:
     return MassProperties(total, centre, inertia)
 
 
+def local_axes_inertia(moments: np.ndarray, xaxis: np.ndarray,
+                       inplane: np.ndarray) -> np.ndarray:
+    """Inertia tensor (3, 3) kg*mm^2 in global axes of principal moments (3,) about
+    local axes: x along ``xaxis``, z = x cross ``inplane``, y = z cross x (LS-DYNA's
+    IRCS = 1: XL YL ZL, XLIP YLIP ZLIP). ValueError when the axes are degenerate."""
+    e1 = np.asarray(xaxis, dtype=float)
+    lip = np.asarray(inplane, dtype=float)
+    e3 = np.cross(e1, lip)
+    if np.linalg.norm(e1) == 0.0 or \
+            np.linalg.norm(e3) <= 1e-12 * np.linalg.norm(e1) * np.linalg.norm(lip):
+        raise ValueError("the local x axis XL YL ZL is zero or parallel to the in-plane "
+                         "vector XLIP YLIP ZLIP")
+    e1 = e1 / np.linalg.norm(e1)
+    e3 = e3 / np.linalg.norm(e3)
+    q = np.column_stack([e1, np.cross(e3, e1), e3])
+    return q @ np.diag(np.asarray(moments, dtype=float)) @ q.T
+
+
 def lead_of(model: Model) -> dict[int, int]:
     """{rigid part id: the id of the body's lead part} over every rigid part."""
     parent = {m.constrained: m.lead for m in model.rigid_merges}

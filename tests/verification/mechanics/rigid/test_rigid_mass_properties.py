@@ -203,3 +203,15 @@ def test_nodal_inertia_with_principal_moments_about_local_axes():
                 ixy=0.7, yl=1.0, xlip=-1.0)
     nrb = _body(assemble(build_model(deck)), 100)
     _close(nrb.inertia0, np.diag([2.0, 1.0, 3.0]))
+
+
+def test_part_inertia_with_principal_moments_about_local_axes():
+    """*PART_INERTIA IRCS = 1, local x = global y, in-plane vector -x: principal
+    moments (1, 2, 3) are diag(2, 1, 3) in global axes (as the nodal case)."""
+    deck = _with_part_inertia(0)
+    for it in deck.items:
+        if isinstance(it, PartInertia):
+            it.ircs, it.ixx, it.iyy, it.izz, it.ixy, it.yl, it.xlip = 1, 1.0, 2.0, 3.0, 0.7, \
+                1.0, -1.0
+    body = _body(assemble(build_model(deck)), 1)
+    _close(body.inertia0, np.diag([2.0, 1.0, 3.0]))
