@@ -100,7 +100,7 @@ def _advance_velocity(dt, mass, inertia0, rot, rot_w, force, moment, vel, omega,
             c1 = iw[1, 0] * w0 + iw[1, 1] * w1 + iw[1, 2] * w2 + dt * moment[b, 1]
             c2 = iw[2, 0] * w0 + iw[2, 1] * w1 + iw[2, 2] * w2 + dt * moment[b, 2]
             a = inertia[b]
-            # adjugate solve of a alpha = c
+            # adjugate solve of I(R^n) w = c
             k00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
             k01 = a[0, 2] * a[2, 1] - a[0, 1] * a[2, 2]
             k02 = a[0, 1] * a[1, 2] - a[0, 2] * a[1, 1]
