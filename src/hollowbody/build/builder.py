@@ -23,6 +23,7 @@ from hollowbody.errors import DeckError
 from hollowbody.io.keyword import (
     BoundarySpcNode,
     BoundarySpcSet,
+    ConstrainedNodalRigidBodyKeyword,
     Contact,
     ControlBulkViscosity,
     ControlContact,
@@ -62,6 +63,7 @@ from hollowbody.io.keyword import (
     TiedContact,
 )
 from hollowbody.model import model as m
+from hollowbody.model.rigid_bodies import local_axes_inertia
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
 OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rwforc")
@@ -430,6 +432,7 @@ def _spcs(b: _Builder, model: m.Model) -> list[m.NodalSPC]:
 
 def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
     out = []
+    nodal_pids = {it.pid for it in b.of(ConstrainedNodalRigidBodyKeyword)}
     for it in b.of(PrescribedMotionKeyword):
         if it.dof not in _MOTION_DOFS:
             raise _err(it, f"DOF={it.dof} is not supported (1, 2, 3 translations; 5, 6, 7 "
@@ -442,6 +445,9 @@ def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
         kw = dict(dof=it.dof, vad=it.vad, lcid=it.lcid, sf=_or(it.sf, 1.0), birth=it.birth,
                   death=_or(it.death, 1.0e28), source=it.source)
         if isinstance(it, PrescribedMotionRigid):
+            if it.pid in nodal_pids:  # a nodal rigid body (build.rigid_constraints)
+                out.append(m.PrescribedMotion("rigid", pid=it.pid, **kw))
+                continue
             if it.pid not in model.parts:
                 raise _err(it, f"prescribed motion refers to part {it.pid} which is not defined")
             if model.material_of(it.pid).kind != "rigid":
@@ -459,13 +465,20 @@ def _prescribed(b: _Builder, model: m.Model) -> list[m.PrescribedMotion]:
 def _part_inertia(b: _Builder, model: m.Model) -> dict[int, m.PartInertia]:
     out = {}
     for it in b.of(PartInertia):
-        if it.ircs:
-            raise _err(it, "IRCS=1 (inertia in a local system) is not supported")
+        if it.ircs not in (0, 1) or (it.ircs and it.cid):
+            raise _err(it, f"IRCS={it.ircs}, CID={it.cid}: give the tensor in global axes "
+                       "(IRCS=0) or principal moments about XL..ZLIP (IRCS=1, CID=0)")
         xc = np.array([it.xc, it.yc, it.zc])
         if it.nodeid:
             xc = model.node_x0[b.node_list([it.nodeid], it, "NODEID")[0]].copy()
         inertia = np.array([[it.ixx, it.ixy, it.ixz], [it.ixy, it.iyy, it.iyz],
                             [it.ixz, it.iyz, it.izz]])
+        if it.ircs:  # principal moments about local axes (model.rigid_bodies)
+            try:
+                inertia = local_axes_inertia([it.ixx, it.iyy, it.izz], [it.xl, it.yl, it.zl],
+                                             [it.xlip, it.ylip, it.zlip])
+            except ValueError as exc:
+                raise _err(it, f"IRCS=1: {exc}") from None
         out[it.pid] = m.PartInertia(it.pid, xc, it.tm, inertia, np.array([it.vtx, it.vty, it.vtz]),
                                     np.array([it.vrx, it.vry, it.vrz]), it.source)
     return out

@@ -60,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
     if model is None:  # the inventory of what was read, then the error
         summary = deck_inventory(read.deck, "not read" if read.error else "not defined")
         summary.update(deck=args.deck, keywords=read.keywords, problems=[str(error)],
-                       can_run=False, warnings=[], time_step=None, threads=None)
+                       can_run=False, warnings=[], time_step=None, threads=None,
+                       rigid_bodies=[])
         _print(summary, args.json)
         raise error
     summary = summarize(model)
@@ -136,6 +137,8 @@ def print_summary(s: dict) -> None:
         table.add_row(str(p["pid"]), escape(p["title"]), str(p["elements"]),
                       escape(p["section"]), escape(p["material"]), mass)
     con.print(table)
+    if s.get("rigid_bodies"):
+        con.print(_rigid_table(s["rigid_bodies"]))
     for what in ("materials", "sections"):
         if s.get(what):
             con.print(f"{what}: " + "; ".join(f"{kw} {', '.join(map(str, ids))}"
@@ -175,3 +178,22 @@ def print_summary(s: dict) -> None:
             con.print(f"  - {reason}", markup=False, soft_wrap=True)  # one line: file:line
     else:
         con.print("[green]the deck can run[/green]")
+
+
+def _rigid_table(rows: list[dict]):  # noqa: ANN202 - rich Table
+    """The rigid bodies: pid, parts, nodes, mass, centre, principal inertias."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title="rigid bodies", title_justify="left")
+    for col in ("pid", "made of", "nodes", "mass (kg)", "centre (mm)",
+                "principal inertias (kg*mm^2)"):
+        table.add_column(col, justify="right" if col in ("pid", "nodes", "mass (kg)")
+                         else "left")
+    for r in rows:
+        made = ("nodal rigid body" if r["kind"] == "nodal" else
+                "part" + ("s " if len(r["pids"]) > 1 else " ") + ", ".join(map(str, r["pids"])))
+        table.add_row(str(r["pid"]), escape(made), str(r["nodes"]), f"{r['mass_kg']:.6g}",
+                      ", ".join(f"{c:.5g}" for c in r["centre_mm"]),
+                      ", ".join(f"{c:.5g}" for c in r["principal_inertia_kg_mm2"]))
+    return table

@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas
 from hollowbody.model.model import Model
+from hollowbody.model.rigid_bodies import rigid_body_summary
 
 #: Faces of the hexahedron, LS-DYNA node order (0-based local nodes).
 HEX_FACES = np.array([[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
@@ -146,7 +148,7 @@ def summarize(model: Model) -> dict:
         elements["triangles"] += tri
         elements["shells"] += g.conn.shape[0] - tri
         count[g.pid] = count.get(g.pid, 0) + g.conn.shape[0]
-    _, part_mass = lumped_node_mass(model)
+    node_mass, part_mass = lumped_node_mass(model)
     for pid, pin in model.part_inertia.items():
         if pin.tm > 0.0:
             part_mass[pid] = pin.tm
@@ -175,10 +177,20 @@ def summarize(model: Model) -> dict:
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),
         "unsupported": unsupported_entries(model),
+        "rigid_bodies": _rigid_bodies(model, node_mass),
     }
     summary["problems"] = problems(model, summary)
     summary["can_run"] = not summary["problems"]
     return summary
+
+
+def _rigid_bodies(model: Model, node_mass: np.ndarray) -> list[dict]:
+    """The rigid bodies' mass properties (:func:`rigid_body_summary`, the run's own);
+    [] when they cannot be computed (the run's set-up reports why)."""
+    try:
+        return rigid_body_summary(model, node_mass)
+    except DeckError:
+        return []
 
 
 def problems(model: Model, summary: dict) -> list[str]:

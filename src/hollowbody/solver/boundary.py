@@ -39,7 +39,7 @@ class Constraints:
         self.curves = model.curves
         self.node_motions: list[PrescribedMotion] = []
         self.rigid_motions: list[tuple[PrescribedMotion, RigidBody]] = []
-        by_pid = {b.pid: b for b in bodies}
+        by_pid = {p: b for b in bodies for p in (getattr(b, "pids", None) or [b.pid])}
         for pm in model.prescribed:
             if pm.lcid not in model.curves:
                 raise DeckError(f"curve {pm.lcid} is not defined", pm.source.file,
@@ -49,7 +49,7 @@ class Constraints:
                                 pm.source.line, "BOUNDARY_PRESCRIBED_MOTION")
             if pm.target == "rigid":
                 if pm.pid not in by_pid:
-                    raise DeckError(f"part {pm.pid} is not a rigid part", pm.source.file,
+                    raise DeckError(f"part {pm.pid} is not a rigid body", pm.source.file,
                                     pm.source.line, "BOUNDARY_PRESCRIBED_MOTION_RIGID")
                 body = by_pid[pm.pid]
                 axis = (pm.dof - 1) if pm.dof <= 3 else (pm.dof - 5)

@@ -266,6 +266,8 @@ class RunOutputs:
                     self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *state.v[i]])
         if self.clocks["rbdout"].due(t) or force:
             for b in self.asm.bodies:
+                if getattr(b, "iprt", 0) == 2:  # a nodal rigid body's IPRT = 2: not written
+                    continue
                 self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
         if self.clocks["spcforc"].due(t) or force:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
@@ -302,8 +304,10 @@ class RunOutputs:
         """Kinetic energy (J) per part: rigid bodies exactly, other parts from their
         share of the lumped nodal masses at full-step velocities."""
         v = node_velocity_full_step(self.asm, state)
-        bodies = {b.pid: b for b in self.asm.bodies}
-        return {pid: bodies[pid].kinetic_energy() if pid in bodies else
+        # a body's kinetic energy goes to its lead part (parts merged into it: 0)
+        bodies = {p: b for b in self.asm.bodies for p in (b.pids or [b.pid])}
+        return {pid: (bodies[pid].kinetic_energy() if bodies[pid].pid == pid else 0.0)
+                if pid in bodies else
                 0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
                 for pid, share in self.asm.part_share.items()}
 

@@ -1,4 +1,5 @@
-"""Rigid bodies: one per *MAT_RIGID part.
+"""Rigid bodies: *MAT_RIGID parts (with merged parts and extra nodes) and nodal
+rigid bodies (:mod:`hollowbody.model.rigid_bodies` defines them).
 
 A rigid body has mass ``M`` (kg), centre ``xc`` (3,) mm, inertia about the
 centre in the body's initial orientation ``I0`` (3, 3) kg*mm^2 and rotation
@@ -8,26 +9,32 @@ force and moment, and the body is advanced with the same central-difference
 step as the nodes:
 
     V^{n+1/2} = V^{n-1/2} + dt * F / M
-    w^{n+1/2} = w^{n-1/2} + dt * I^{-1} (Mc - w x I w)      (I = R I0 R^T)
+    L^{n-1/2} = I(R^{n-1}) w^{n-1/2};   L^{n+1/2} = L^{n-1/2} + dt * Mc
+    w^{n+1/2} = I(R^n)^{-1} L^{n+1/2}                        (I(R) = R I0 R^T)
     xc^{n+1}  = xc^n + dt V^{n+1/2};   R^{n+1} = exp(dt [w^{n+1/2}]x) R^n
 
-Constraints (*MAT_RIGID CMO = +1, CON1 / CON2 in global axes) zero the
-corresponding components of V and w. Mass properties come from the lumped
-nodal masses of the part, or from *PART_INERTIA when given.
+The rotation is advanced through the spatial angular momentum L (Euler's
+equation dL/dt = Mc in the global frame), so a torque-free body keeps L to
+round-off; ``rot_w`` is the rotation R^{n-1} at which the current w was made
+(w^{n-1/2} = I(R^{n-1})^{-1} L^{n-1/2}). The kinetic energy of a tumbling body
+is not exactly conserved by this explicit update (its error is first order in dt).
+
+Constraints (*MAT_RIGID CMO = +1, CON1 / CON2 in global axes, or a nodal
+rigid body's _SPC card) zero the corresponding components of V and w. Mass
+properties: :func:`hollowbody.model.rigid_bodies.rigid_body_defs`. In the run
+all bodies advance together (:mod:`hollowbody.solver.rigid_set`, one kernel over
+every body); the methods below advance one body alone and give the same values.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from hollowbody.errors import DeckError
-from hollowbody.model.mass import part_nodes, point_mass_properties
 from hollowbody.model.model import Model
-
-# LS-DYNA CON1 (translations) / CON2 (rotations) codes -> constrained axes.
-_CON_AXES = {0: (), 1: (0,), 2: (1,), 3: (2,), 4: (0, 1), 5: (1, 2), 6: (2, 0), 7: (0, 1, 2)}
+from hollowbody.model.rigid_bodies import rigid_body_defs
 
 
 def _rotation(phi: np.ndarray) -> np.ndarray:
@@ -45,7 +52,8 @@ class RigidBody:
     """State of one rigid body (see module docstring for the symbols)."""
 
     #: time-varying attributes (saved by the run's State)
-    STATE_FIELDS = ("xc", "rot", "vel", "omega", "force", "moment", "vel_free", "omega_free")
+    STATE_FIELDS = ("xc", "rot", "vel", "omega", "force", "moment", "vel_free", "omega_free",
+                    "rot_w")
 
     pid: int
     nodes: np.ndarray  # (k,) int64 node indices
@@ -63,6 +71,13 @@ class RigidBody:
     prescribed_trans: np.ndarray  # (3,) bool, velocity set by prescribed motion
     prescribed_rot: np.ndarray  # (3,) bool
     xc0: np.ndarray  # (3,) mm centre at t=0
+    #: every part id the body is made of (lead first; [pid] for a nodal rigid body)
+    pids: list[int] = field(default_factory=list)
+    kind: str = "part"  # "part" (*MAT_RIGID parts) or "nodal" (nodal rigid body)
+    iprt: int = 0  # 2: not written to rbdout
+    pnode: int = -1  # node index kept at the centre of mass (-1: none)
+    #: (3, 3) rotation at which omega was last updated (None: ``rot``)
+    rot_w: np.ndarray | None = None
 
     def inertia(self) -> np.ndarray:
         return self.rot @ self.inertia0 @ self.rot.T
@@ -99,13 +114,15 @@ class RigidBody:
         self.omega_free = self.omega.copy()
         inertia = self.inertia()
         if np.any(np.diag(inertia) > 0.0):
-            gyro = np.cross(self.omega, inertia @ self.omega)
-            alpha = np.linalg.solve(inertia, self.moment - gyro)
-            self.omega_free = self.omega + dt * alpha
+            rw = self.rot if self.rot_w is None else self.rot_w
+            ang = (rw @ self.inertia0 @ rw.T) @ self.omega  # L^{n-1/2}
+            delta = np.linalg.solve(inertia, ang + dt * self.moment) - self.omega
+            self.omega_free = self.omega + delta
             self.omega_free[self.fixed_rot] = 0.0
-            alpha[self.fixed_rot | self.prescribed_rot] = 0.0
-            self.omega = self.omega + dt * alpha
+            delta[self.fixed_rot | self.prescribed_rot] = 0.0
+            self.omega = self.omega + delta
         self.omega[self.fixed_rot] = 0.0
+        self.rot_w = self.rot.copy()
 
     def advance_position(self, dt: float, x: np.ndarray) -> None:
         """Move the centre and rotation over dt and place the body's nodes in x."""
@@ -116,58 +133,27 @@ class RigidBody:
 
 def build_rigid_bodies(model: Model, node_mass: np.ndarray,
                        node_x0: np.ndarray | None = None) -> list[RigidBody]:
-    """One RigidBody per rigid part, with initial velocity from ``model.node_v0``.
+    """One RigidBody per rigid body of ``model`` (:func:`rigid_body_defs`: *MAT_RIGID
+    parts with their merged parts and extra nodes, then nodal rigid bodies).
 
-    The initial V and w are the least-squares rigid motion of the part's nodal
-    initial velocities (momentum-preserving), unless *PART_INERTIA gives them.
-    node_x0: (n, 3) mm initial coordinates (None: ``model.node_x0``).
+    Mass properties and initial velocities come from
+    :mod:`hollowbody.model.rigid_bodies` (the same values ``hollowbody check``
+    prints). node_x0: (n, 3) mm initial coordinates (None: ``model.node_x0``).
+    A body's PNODE (nodal rigid bodies) sits at the centre: its offset is zero.
     """
+    x0_all = model.node_x0 if node_x0 is None else node_x0
     bodies = []
-    for pid in model.rigid_pids():
-        mat = model.material_of(pid)
-        nodes = part_nodes(model, pid)
-        if nodes.size == 0:
-            continue
-        x0 = (model.node_x0 if node_x0 is None else node_x0)[nodes]
-        props = point_mass_properties(x0, node_mass[nodes])
-        pin = model.part_inertia.get(pid)
-        if pin is not None:
-            mass, xc, inertia = pin.tm, np.asarray(pin.xc, float), np.asarray(pin.inertia, float)
-        else:
-            mass, xc, inertia = props.mass, props.centre, props.inertia
-        if mass <= 0.0:
-            raise DeckError(f"rigid part {pid} has no mass", mat.source.file, mat.source.line,
-                            mat.keyword or "MAT_RIGID")
-        r = x0 - xc
-        m = node_mass[nodes]
-        if pin is not None:
-            vel, omega = np.asarray(pin.v0, float).copy(), np.asarray(pin.w0, float).copy()
-        else:
-            v0 = model.node_v0[nodes]
-            vel = (m[:, None] * v0).sum(axis=0) / max(float(m.sum()), 1e-300)
-            ang = np.cross(r, m[:, None] * (v0 - vel)).sum(axis=0)
-            omega = np.linalg.solve(inertia, ang) if np.linalg.det(inertia) > 0 else np.zeros(3)
-        cmo = int(mat.params.get("CMO", 0.0))
-        fixed_t = np.zeros(3, dtype=bool)
-        fixed_r = np.zeros(3, dtype=bool)
-        if cmo == 1:
-            con1 = int(mat.params.get("CON1", 0.0))
-            con2 = int(mat.params.get("CON2", 0.0))
-            if con1 not in _CON_AXES or con2 not in _CON_AXES:
-                raise DeckError(f"CON1={con1}/CON2={con2} not supported (0-7)",
-                                mat.source.file, mat.source.line, mat.keyword or "MAT_RIGID")
-            fixed_t[list(_CON_AXES[con1])] = True
-            fixed_r[list(_CON_AXES[con2])] = True
-        elif cmo == -1:
-            raise DeckError("CMO=-1 (constraints in local SPC system) is not supported; "
-                            "use CMO=1 with global constraints", mat.source.file,
-                            mat.source.line, mat.keyword or "MAT_RIGID")
-        vel[fixed_t] = 0.0
-        omega[fixed_r] = 0.0
+    for d in rigid_body_defs(model, node_mass, x0_all):
+        for note in d.notes:
+            warnings.warn(note, UserWarning, stacklevel=2)
+        r = x0_all[d.nodes] - d.centre
+        if d.pnode >= 0:
+            r[np.searchsorted(d.nodes, d.pnode)] = 0.0
         bodies.append(RigidBody(
-            pid=pid, nodes=nodes, mass=float(mass), xc=np.asarray(xc, float).copy(),
-            inertia0=np.asarray(inertia, float), rot=np.eye(3), vel=vel, omega=omega,
-            local0=r.copy(), fixed_trans=fixed_t, fixed_rot=fixed_r, force=np.zeros(3),
-            moment=np.zeros(3), prescribed_trans=np.zeros(3, dtype=bool),
-            prescribed_rot=np.zeros(3, dtype=bool), xc0=np.asarray(xc, float).copy()))
+            pid=d.pid, nodes=d.nodes, mass=float(d.mass), xc=d.centre.copy(),
+            inertia0=d.inertia.copy(), rot=np.eye(3), vel=d.vel.copy(), omega=d.omega.copy(),
+            local0=r, fixed_trans=d.fixed_trans.copy(), fixed_rot=d.fixed_rot.copy(),
+            force=np.zeros(3), moment=np.zeros(3), prescribed_trans=np.zeros(3, dtype=bool),
+            prescribed_rot=np.zeros(3, dtype=bool), xc0=d.centre.copy(), pids=list(d.pids),
+            kind=d.kind, iprt=d.iprt, pnode=d.pnode))
     return bodies

@@ -163,6 +163,8 @@ def assemble(model: Model) -> Assembly:
     asm.bodies = build_rigid_bodies(model, node_mass, x0)
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
+        if b.pnode >= 0:  # a nodal rigid body's PNODE starts at its centre of mass
+            asm.node_x0[b.pnode] = b.xc
     asm.constraints = Constraints(model, asm.bodies)
     asm.rigid_dt = rigid_element_step(model, x0)
     asm.erode = bool(model.controls.erode)

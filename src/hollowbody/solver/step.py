@@ -26,6 +26,8 @@ import time
 
 import numpy as np
 
+from hollowbody.solver.rigid_set import rigid_set
+
 NORMAL = "normal termination"
 ERROR = "error termination"
 INTERRUPT = "user interrupt"
@@ -87,14 +89,14 @@ def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
     if plan.has_rotations:
         state.w += dt_avg * state.mom * state.inv_i[:, None]
         state.w[cons.fixed_rot] = 0.0
-    for body in plan.bodies:
-        body.advance_velocity(dt_avg)
-        free_v, free_w = body.vel_free, body.omega_free
+    rs = rigid_set(plan) if plan.bodies else None
+    if rs is not None:  # every rigid body at once (solver.rigid_set)
+        rs.advance_velocity(dt_avg)
         cons.apply_rigid(state.t, dt)
-        # work of the prescribed-motion reaction impulse, M (V_imp - V_free) . V_imp
-        # (force times the step's displacement, as for prescribed nodes below)
-        state.ext_work += body.mass * float((body.vel - free_v) @ body.vel)
-        state.ext_work += float((body.omega - free_w) @ body.inertia() @ body.omega)
+        if cons.rigid_motions:
+            # work of the prescribed-motion reaction impulses, M (V_imp - V_free) . V_imp
+            # (force times the step's displacement, as for prescribed nodes below)
+            state.ext_work += rs.prescribed_work()
     cons.apply_nodes(v, x, state.t, dt)
     for term in plan.terms:  # velocity constraints (stationary rigid walls)
         constrain = getattr(term, "constrain", None)
@@ -107,14 +109,10 @@ def advance(plan, state, dt: float, dt_avg: float) -> None:  # noqa: ANN001
         dv = v[pn] - v_free[pn]
         state.ext_work += float((state.node_mass[pn, None] * dv
                                  * 0.5 * (v_old + v[pn])).sum())
-    x_old_rigid = [x[b.nodes].copy() for b in plan.bodies]
+    x_old_rigid = rs.old_positions(x) if rs is not None else None
     x += dt * v
-    for body, xr in zip(plan.bodies, x_old_rigid):
-        body.advance_position(dt, x)
-        if dt > 0.0:
-            v[body.nodes] = (x[body.nodes] - xr) / dt
-        if plan.has_rotations:
-            state.w[body.nodes] = body.omega
+    if rs is not None:  # rigid nodes placed by their bodies, v = (x^{n+1} - x^n) / dt
+        rs.advance_position(dt, x, v, state.w if plan.has_rotations else None, x_old_rigid)
     if plan.ties is not None:  # [tied] slaves placed on their moved segments
         plan.ties.follow(x, v, state.w, dt)
 
@@ -138,8 +136,8 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
     state.timing["elements"] += t1 - t0
     state.timing["contact"] += t2 - t1
     state.timing["mechanics"] += t3 - t2
-    for body in plan.bodies:
-        body.gather(state.x, f, state.mom)
+    if plan.bodies:
+        rigid_set(plan).gather(state.x, f, state.mom)
     for term in plan.terms:  # loads on rigid bodies as a whole
         after = getattr(term, "after_gather", None)
         if after is not None:

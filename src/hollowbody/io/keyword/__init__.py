@@ -59,6 +59,17 @@ from hollowbody.io.keyword.kw_materials import (
 )
 from hollowbody.io.keyword.kw_mesh import MassElements, Nodes, ShellElements, SolidElements
 from hollowbody.io.keyword.kw_parts import Hourglass, Part, PartInertia, SectionShell, SectionSolid
+from hollowbody.io.keyword.kw_rigid import (
+    ConstrainedExtraNodesNode,
+    ConstrainedExtraNodesSet,
+    ConstrainedNodalRigidBody,
+    ConstrainedNodalRigidBodyInertia,
+    ConstrainedNodalRigidBodyKeyword,
+    ConstrainedNodalRigidBodySpc,
+    ConstrainedNodalRigidBodySpcInertia,
+    ConstrainedRigidBodies,
+    ConstrainedRigidBodiesSet,
+)
 from hollowbody.io.keyword.kw_sets import (
     DefineCurve,
     SetNodeList,
@@ -77,7 +88,11 @@ from hollowbody.io.keyword.reader import (
 from hollowbody.io.keyword.writer import deck_lines, write_deck
 
 __all__ = [
-    "CONTACT_TYPES", "BoundarySpcNode", "BoundarySpcSet", "Contact", "ControlBulkViscosity",
+    "CONTACT_TYPES", "BoundarySpcNode", "ConstrainedExtraNodesNode", "ConstrainedExtraNodesSet",
+    "ConstrainedNodalRigidBody", "ConstrainedNodalRigidBodyInertia",
+    "ConstrainedNodalRigidBodyKeyword", "ConstrainedNodalRigidBodySpc",
+    "ConstrainedNodalRigidBodySpcInertia", "ConstrainedRigidBodies", "ConstrainedRigidBodiesSet",
+    "BoundarySpcSet", "Contact", "ControlBulkViscosity",
     "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
     "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
     "DatabaseHistoryNodeSet",
