@@ -50,6 +50,7 @@ from hollowbody.io.keyword import (
     PrescribedMotionKeyword,
     PrescribedMotionRigid,
     PrescribedMotionSet,
+    SectionDiscrete,
     SectionShell,
     SectionSolid,
     SetNodeList,
@@ -196,9 +197,12 @@ class _Builder:
 
     def sections(self) -> dict[int, m.SectionDef]:
         out: dict[int, m.SectionDef] = {}
-        items = self.of(SectionSolid) + self.of(SectionShell)
+        items = self.of(SectionSolid) + self.of(SectionShell) + self.of(SectionDiscrete)
         for secid, s in _unique_ids(items, "section", "secid").items():
-            if isinstance(s, SectionShell):
+            if isinstance(s, SectionDiscrete):  # build.discrete reads the rest
+                out[secid] = m.SectionDef(secid, "discrete", 0, {"DRO": float(s.dro)},
+                                          s.title, s.source)
+            elif isinstance(s, SectionShell):
                 t1 = s.t1
                 params = {"T1": t1, "T2": _or(s.t2, t1), "T3": _or(s.t3, t1),
                           "T4": _or(s.t4, t1), "NIP": float(_or(s.nip, 2)),

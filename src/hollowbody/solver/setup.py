@@ -159,6 +159,10 @@ def assemble(model: Model) -> Assembly:
     for b in asm.bodies:
         asm.deformable[b.nodes] = False
     asm.constraints = Constraints(model, asm.bodies)
+    from hollowbody.elements.discrete_group import bind_discrete  # springs' steps, masses
+
+    bind_discrete(asm.elements, node_mass, asm.node_rot_inertia, asm.bodies,
+                  asm.constraints.fixed, asm.constraints.fixed_rot)
     asm.rigid_dt = rigid_element_step(model, x0)
     asm.erode = bool(model.controls.erode)
     rigid_node = ~asm.deformable

@@ -29,6 +29,15 @@ from hollowbody.io.keyword.kw_control import (
     DatabaseHistoryNode,
     DatabaseHistoryNodeSet,
 )
+from hollowbody.io.keyword.kw_discrete import (
+    DefineSdOrientation,
+    ElementDiscrete,
+    MatDamperViscous,
+    MatSpringElastic,
+    MatSpringGeneralNonlinear,
+    MatSpringNonlinearElastic,
+    SectionDiscrete,
+)
 from hollowbody.io.keyword.kw_loads import (
     BoundarySpcNode,
     BoundarySpcSet,
@@ -72,12 +81,13 @@ __all__ = [
     "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
     "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
     "DatabaseHistoryNodeSet",
-    "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
+    "Deck", "DefineCurve", "DefineSdOrientation", "ElementDiscrete", "Hourglass", "Include", "InitialVelocity",
     "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
-    "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
-    "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartialRead", "PartInertia",
+    "MatDamperViscous", "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
+    "MatSimplifiedRubber", "MatSpringElastic", "MatSpringGeneralNonlinear",
+    "MatSpringNonlinearElastic", "Material", "Nodes", "Part", "PartialRead", "PartInertia",
     "PrescribedMotionKeyword", "PrescribedMotionNode",
-    "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionShell",
+    "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionDiscrete", "SectionShell",
     "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
     "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "TIED_OFFSETS",
     "TIED_TYPES", "TiedContact", "Title",
