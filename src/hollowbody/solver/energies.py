@@ -11,7 +11,11 @@ import numpy as np
 
 
 def _half_next(state) -> float:  # noqa: ANN001 - State
-    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set)."""
+    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set, and at
+    cycle 0, whose velocities are the initial, full-step ones: a damper's force at
+    t = 0 would otherwise shift the initial kinetic energy)."""
+    if state.cycle == 0:
+        return 0.0
     return 0.5 * state.dt_next if np.isfinite(state.dt_next) else 0.0
 
 

@@ -6,6 +6,7 @@
 - ``rbdout.csv``  rigid-body displacement, velocity and resultant force;
 - ``spcforc.csv`` total SPC reaction force;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
+- ``deforc.csv``  force, elongation and energy of each discrete element (PF = 0);
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
 - ``messages.log`` the run log; ``summary.json`` how the run ended.
 
@@ -138,7 +139,7 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         f.unlink()
 
 
-HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")
+HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "deforc")
 
 
 class RunOutputs:
@@ -161,7 +162,8 @@ class RunOutputs:
         req = model.output.intervals
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
-                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout")}
+                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout",
+                                    "deforc")}
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
@@ -183,6 +185,9 @@ class RunOutputs:
         self.matsum = HistoryWriter(self.out / "matsum.csv", [
             "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"],
             pos.get("matsum"))
+        self.deforc = HistoryWriter(self.out / "deforc.csv", [
+            "time [ms]", "element", "force [kN|kN*mm]", "elongation [mm|rad]", "energy [J]"],
+            pos.get("deforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
         if resume is not None:
@@ -247,6 +252,12 @@ class RunOutputs:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
         if self.clocks["matsum"].due(t) or force:
             self._write_matsum(state)
+        if self.clocks["deforc"].due(t) or force:
+            for rt in self.asm.elements:
+                if getattr(rt, "family", "") == "discrete":
+                    for i in np.nonzero(rt.print_flag == 0)[0]:
+                        self.deforc.write([t, int(rt.elem_ids[i]), rt.force[i], rt.defl[i],
+                                           rt.energy[i]])
         if self.vtk is not None and (self.state_clock.due(t) or force):
             self.write_state(state)
 
