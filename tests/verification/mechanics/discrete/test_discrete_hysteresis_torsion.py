@@ -1,0 +1,142 @@
+"""S06 loading / unloading / hysteresis energy, and a torsional spring on a rigid body."""
+
+from __future__ import annotations
+
+import numpy as np
+from discrete_decks import Driver, crossings, curve, f10, load, oscillator_deck
+
+from hollowbody.solver.step import step
+
+LOAD = [(0.0, 0.0), (2.0, 10.0), (10.0, 14.0), (20.0, 16.0)]  # kN vs mm
+UNLOAD = [(-2.0, -30.0), (-1.0, -10.0), (0.0, 0.0), (0.5, 6.0), (1.0, 10.0)]
+
+
+def _curve_value(pts, d):
+    xs, ys = np.array(pts).T
+    if d > xs[-1]:
+        return ys[-1] + (ys[-1] - ys[-2]) / (xs[-1] - xs[-2]) * (d - xs[-1])
+    if d < xs[0]:
+        return ys[0] + (ys[1] - ys[0]) / (xs[1] - xs[0]) * (d - xs[0])
+    return float(np.interp(d, xs, ys))
+
+
+def _s06_runtime(beta: float = 1.0):
+    mat = ("*MAT_SPRING_GENERAL_NONLINEAR\n" + f10(1, 11, 12, beta, 0.0, 0.0) + "\n"
+           + curve(11, LOAD) + curve(12, UNLOAD))
+    dr = Driver(load(oscillator_deck([mat], v0=0.0, end=1.0)))
+    return dr.plan.elements[0], dr.state.x.copy()
+
+
+def _force_at(rt, x, d):
+    x = x.copy()
+    x[1, 0] = 100.0 + d
+    f = np.zeros_like(x)
+    rt.add_forces(x, np.zeros_like(x), 1e-3, f)
+    return -f[1, 0]
+
+
+def test_s06_loads_on_lcdl_unloads_on_shifted_lcdu_and_dissipates_the_loop_area():
+    rt, x = _s06_runtime()
+    up = np.linspace(0.0, 10.0, 2001)
+    for d in up[1:]:
+        assert abs(_force_at(rt, x, d) - _curve_value(LOAD, d)) < 1e-9
+    # unloading from F = L(10) = 14: LCDU shifted along the deflection axis so that it
+    # passes through (10, 14); U^-1(14) = 1.5 (end slope 8) -> shift 8.5 mm
+    shift = 10.0 - 1.5
+    down = np.linspace(10.0, shift, 601)
+    for d in down[1:]:
+        assert abs(_force_at(rt, x, d) - _curve_value(UNLOAD, d - shift)) < 1e-9
+    assert abs(rt.force[0]) < 1e-9
+    # dissipated = loop area = int_0^10 L - int_shift^10 U(d - shift) (trapezoid, fine)
+    dd = np.linspace(0.0, 10.0, 100001)
+    area_load = np.trapezoid([_curve_value(LOAD, d) for d in dd], dd)
+    du = np.linspace(shift, 10.0, 100001)
+    area_unload = np.trapezoid([_curve_value(UNLOAD, d - shift) for d in du], du)
+    # tolerance 0.1 %: the element integrates the same curves with 0.005 mm steps
+    assert abs(rt.energy[0] / (area_load - area_unload) - 1.0) < 1e-3
+    # reloading: elastic on the shifted unloading curve up to the last force, then LCDL
+    assert abs(_force_at(rt, x, 9.5) - _curve_value(UNLOAD, 1.0)) < 1e-9
+    for d in np.linspace(9.5, 12.0, 501)[1:]:
+        f = _force_at(rt, x, d)
+        assert f <= _curve_value(LOAD, d) + 1e-9
+    assert abs(f - _curve_value(LOAD, 12.0)) < 1e-9
+
+
+def test_s06_isotropic_hardening_raises_the_compressive_yield():
+    rt, x = _s06_runtime(beta=1.0)
+    for d in np.linspace(0.0, 10.0, 201)[1:]:
+        _force_at(rt, x, d)
+    # after tension to 14 kN, isotropic hardening: compressive yield at -14 kN, so
+    # unloading far into compression stops at max(L(d), ...) only below -14 kN
+    for d in np.linspace(10.0, 6.0, 401)[1:]:
+        f = _force_at(rt, x, d)
+    assert abs(f - (-14.0)) < 1e-9 or f > -14.0 - 1e-9
+    assert f < 0.0
+
+
+TORSION = """\
+*KEYWORD
+*CONTROL_TERMINATION
+{end:>10}
+*CONTROL_TIMESTEP
+       0.0      0.05
+*NODE
+       1             0.0             0.0           -10.0
+       2             0.0             0.0             0.0
+       3            10.0             0.0             0.0
+       4             0.0            10.0             0.0
+       5           -10.0             0.0             0.0
+       6             0.0           -10.0             0.0
+*BOUNDARY_SPC_NODE
+         1         0         1         1         1         1         1         1
+*SECTION_SHELL
+         1         2
+       1.0       1.0       1.0       1.0
+*MAT_RIGID
+         1    7.8e-6     200.0       0.3
+       1.0         7         4
+*PART_INERTIA
+plate
+         1         1         1
+       0.0       0.0       0.0       2.0
+{izz:>10}       0.0       0.0{izz:>10}       0.0{izz:>10}
+       0.0       0.0       0.0       0.0       0.0       1.0
+*ELEMENT_SHELL
+       1       1       2       3       4       4
+       2       1       2       4       5       5
+       3       1       2       5       6       6
+       4       1       2       6       3       3
+*SECTION_DISCRETE
+         2         1
+
+*PART
+torsion spring
+         2         2         2
+*MAT_SPRING_ELASTIC
+         2{kt:>10}
+*ELEMENT_DISCRETE
+       1       2       1       2       0             1.0       0             0.0
+*END
+"""
+
+
+def test_torsional_spring_on_a_rigid_body_period():
+    izz, kt = 50.0, 200.0  # kg*mm^2, kN*mm/rad: omega = 2 rad/ms, period pi ms
+    model = load(TORSION.format(end=15.0, izz=izz, kt=kt))
+    dr = Driver(model)
+    body = dr.plan.bodies[0]
+    rows = []
+    s = dr.state
+    while s.t < 15.0:
+        step(model, dr.plan, s, s.dt_next)
+        rows.append((s.t, body.omega[2]))
+    t, w = np.array(rows).T
+    periods = np.diff(crossings(t, w))
+    exact = 2.0 * np.pi * np.sqrt(izz / kt)
+    assert periods.size >= 3
+    # tolerance 1 %; (omega dt)^2/24 of the integrator is 0.2 % at TSSFAC 0.05
+    assert np.all(np.abs(periods / exact - 1.0) < 0.01), (periods, exact)
+    # amplitude of the twist: w0 / omega = 0.5 rad, stored energy at it 0.5 kt 0.25
+    rt = dr.plan.elements[0]
+    assert rt.torsional and rt.n_elem == 1
+    assert abs(np.abs(w).max() - 1.0) < 0.01
