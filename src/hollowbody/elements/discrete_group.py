@@ -15,12 +15,14 @@ element: 1/m2 = 0; a node on a rigid body: the body's mass, or its smallest
 principal inertia for a torsional element) is a two-mass oscillator with
 ``omega = sqrt(k (1/m1 + 1/m2))``; with a damper c, the central-difference
 limit is ``dt = (2 / omega) (sqrt(1 + xi^2) - xi)``, ``xi = c (1/m1 + 1/m2) /
-(2 omega)`` (``2 / (c (1/m1 + 1/m2))`` without a spring). Springs and dampers on
-the same nodes act in parallel, so k and c are the sums over all discrete
-elements at a node (the larger of the two nodes' sums) and each law's k is a
-bound: K (S01), the largest slope of the curves (S04, S06), times |S|. The step
-is therefore fixed at set-up, safe at every deflection, and never ignored.
-Discrete elements get no mass from mass scaling (DT2MS): their step stays.
+(2 omega)`` (``2 / (c (1/m1 + 1/m2))`` without a spring). k is the element's
+current tangent stiffness times |S| (K for S01; for S04 / S06 the largest slope
+of the curve segments around the current deflection, so a stiffening curve is
+seen one segment ahead), recomputed every cycle, plus the stiffness bounds (K,
+largest curve slope, times |S|) of the other discrete elements at the same
+nodes (the larger of the two nodes' sums): springs and dampers on the same
+nodes act in parallel, and c is the sum of the dampers there. Discrete elements
+get no mass from mass scaling (DT2MS): their step stays.
 """
 
 from __future__ import annotations
@@ -60,7 +62,7 @@ class DiscreteGroupRuntime:
     #: not given mass by mass scaling (solver.mass_scaling)
     mass_scaled = False
     STATE_FIELDS: tuple[str, ...] = ("alive", "hist", "force", "defl", "rate", "direction",
-                                     "energy", "stress", "internal_energy", "failed")
+                                     "energy", "stress", "internal_energy", "failed", "_dte")
 
     def __init__(self, group: DiscreteGroup, model, x0: np.ndarray) -> None:  # noqa: ANN001
         self.group = group
@@ -142,6 +144,10 @@ class DiscreteGroupRuntime:
         self.r2 = np.zeros(e)
         self.mass_q = np.zeros(e)
         self._dte = np.full(e, np.inf)
+        # time step data (bind): other elements' stiffness, damping, 1/m1 + 1/m2
+        self.k_other = np.zeros(e)
+        self.c_use = np.ascontiguousarray(self.c_bound.copy())
+        self.minv = np.zeros(e)
         self._wzero = np.zeros((0, 3))
         self._mzero = np.zeros((0, 3))
 
@@ -179,10 +185,15 @@ class DiscreteGroupRuntime:
         minv = im1 + im2
         same = (self.n2 >= 0) & (body_of[self.n1] >= 0) & \
             (body_of[self.n1] == body_of[np.maximum(self.n2, 0)])
-        k = np.maximum(step_k[self.n1], np.where(self.n2 >= 0, step_k[np.maximum(self.n2, 0)], 0.0))
-        c = np.maximum(step_c[self.n1], np.where(self.n2 >= 0, step_c[np.maximum(self.n2, 0)], 0.0))
-        self._dte = critical_step(k, c, minv)
-        self._dte[same] = np.inf  # both ends on one rigid body: internal, no motion
+        minv[same] = 0.0  # both ends on one rigid body: internal, no motion
+        has2 = self.n2 >= 0
+        n2 = np.maximum(self.n2, 0)
+        k = np.maximum(step_k[self.n1], np.where(has2, step_k[n2], 0.0))
+        c = np.maximum(step_c[self.n1], np.where(has2, step_c[n2], 0.0))
+        self.k_other = np.ascontiguousarray(np.maximum(k - self.k_bound, 0.0))
+        self.c_use = np.ascontiguousarray(c)
+        self.minv = np.ascontiguousarray(minv)
+        self._dte = critical_step(k, c, minv)  # until the first call (bounds)
 
     # -- the cycle ------------------------------------------------------------------
     def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float, f: np.ndarray,
@@ -201,14 +212,14 @@ class DiscreteGroupRuntime:
                                  self.n2, self.ground, self.fixed, self.axis, self.length0,
                                  self.offset, self.scale, self.alive, self.params, self.lx,
                                  self.ly, self.ux, self.uy, self.hist, self.force, self.defl,
-                                 self.rate, self.direction, self.energy, f, mom)
+                                 self.rate, self.direction, self.energy, self.k_other,
+                                 self.c_use, self.minv, self._dte, f, mom)
         self.internal_energy = float(self.energy.sum())
         self.stress[:, 0] = self.force
         if failed >= 0:
             for i in np.nonzero(~self.alive)[0]:
                 if int(i) not in self.failed:
                     self.failed.append(int(i))
-                    self._dte[i] = np.inf
         if self.n_elem == 0:
             return np.inf, -1, -1
         i = int(np.argmin(self._dte))

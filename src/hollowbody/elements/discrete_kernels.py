@@ -57,6 +57,40 @@ def curve_value(cx: np.ndarray, cy: np.ndarray, t: float) -> float:
 
 
 @njit(cache=True)
+def curve_slope_near(cx: np.ndarray, cy: np.ndarray, t: float) -> float:
+    """Largest |slope| of the segment of (cx, cy) holding t and of its two neighbours
+    (the end segments beyond the ends): the current tangent with a look-ahead."""
+    m = cx.size
+    if m < 2:
+        return 0.0
+    k = 0
+    while k < m - 2 and cx[k + 1] <= t:
+        k += 1
+    best = 0.0
+    for j in range(max(k - 1, 0), min(k + 2, m - 1)):
+        s = abs((cy[j + 1] - cy[j]) / (cx[j + 1] - cx[j]))
+        if s > best:
+            best = s
+    return best
+
+
+@njit(cache=True)
+def step_limit(k: float, c: float, minv: float) -> float:
+    """ms: central-difference limit of a spring k and damper c in parallel between masses
+    with 1/m1 + 1/m2 = minv: (2 / omega) (sqrt(1 + xi^2) - xi), omega^2 = k minv,
+    xi = c minv / (2 omega); 2 / (c minv) without a spring; inf without either."""
+    om2 = k * minv
+    cm = c * minv
+    if om2 > 0.0:
+        om = np.sqrt(om2)
+        xi = cm / (2.0 * om)
+        return 2.0 / om * (np.sqrt(1.0 + xi * xi) - xi)
+    if cm > 0.0:
+        return 2.0 / cm
+    return np.inf
+
+
+@njit(cache=True)
 def curve_inverse(cx: np.ndarray, cy: np.ndarray, y: float) -> float:
     """t with y(t) = y for a strictly increasing curve (end slopes extrapolated)."""
     return curve_value(cy, cx, y)
@@ -106,7 +140,8 @@ def discrete_forces(law: int, torsional: bool, x: np.ndarray, v: np.ndarray, w: 
                     params: np.ndarray, lx: np.ndarray, ly: np.ndarray, ux: np.ndarray,
                     uy: np.ndarray, hist: np.ndarray, force: np.ndarray, defl: np.ndarray,
                     rate: np.ndarray, direction: np.ndarray, energy: np.ndarray,
-                    f: np.ndarray, mom: np.ndarray) -> int:
+                    k_other: np.ndarray, c_use: np.ndarray, minv: np.ndarray,
+                    dte: np.ndarray, f: np.ndarray, mom: np.ndarray) -> int:
     """Forces of one discrete group; returns the index of the first element that failed
     this call (|d| > FD) or -1.
 
@@ -117,7 +152,11 @@ def discrete_forces(law: int, torsional: bool, x: np.ndarray, v: np.ndarray, w: 
     params: [K or DC, BETA, TYI, CYI, FD]. Curves (lx, ly) loading / LCD, (ux, uy)
     unloading (S06). State (updated): hist (e,4), force (e,) kN or kN*mm scaled,
     defl (e,) mm or rad, rate (e,), direction (e,3) last unit direction, energy (e,)
-    J accumulated. Adds into f (n,3) kN or mom (n,3) kN*mm. No allocation.
+    J accumulated. Time step: k_other (e,) the stiffness bounds of the other discrete
+    elements at the element's nodes, c_use (e,) the damping there (own included),
+    minv (e,) 1/m1 + 1/m2 (0 where nothing moves); dte (e,) ms is set to the limit
+    with k = k_other + |S| x the law's current tangent (:func:`curve_slope_near`).
+    Adds into f (n,3) kN or mom (n,3) kN*mm. No allocation.
     """
     e_count = n1.size
     failed = -1
@@ -166,19 +205,26 @@ def discrete_forces(law: int, torsional: bool, x: np.ndarray, v: np.ndarray, w: 
                      + (uz_ - ground[i, 2]) * ez + offset[i])
             else:
                 d = length - length0[i] + offset[i]
-        # law
+        # law and its current tangent
         if law == 1:
             fl = params[0] * d
+            kt = params[0]
         elif law == 2:
             fl = params[0] * r
+            kt = 0.0
         elif law == 4:
             fl = curve_value(lx, ly, d)
+            kt = curve_slope_near(lx, ly, d)
         else:
             fl = _general_force(d, lx, ly, ux, uy, params[1], params[2], params[3], hist, i)
+            kt = max(curve_slope_near(lx, ly, d),
+                     curve_slope_near(ux, uy, d - hist[i, H_SHIFT]))
+        dte[i] = step_limit(k_other[i] + abs(scale[i]) * kt, c_use[i], minv[i])
         fs = scale[i] * fl
         if fd > 0.0 and abs(d) > fd:  # failure deflection: the element is deleted
             fs = 0.0
             alive[i] = False
+            dte[i] = np.inf
             if failed < 0:
                 failed = i
         energy[i] += 0.5 * (force[i] + fs) * (d - defl[i])

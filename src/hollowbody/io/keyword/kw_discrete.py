@@ -38,7 +38,8 @@ class SectionDiscrete(SimpleKeyword):
 
     KEYWORD: ClassVar[str] = "SECTION_DISCRETE"
     CARDS: ClassVar[tuple[str, ...]] = ("secid dro kd v0 cl fd", "cdl tdl")
-    N_REQUIRED: ClassVar[int] = 1
+    #: both cards are read (a blank line is a card of defaults), as LS-DYNA does
+    N_REQUIRED: ClassVar[int] = 2
     REPEAT: ClassVar[bool] = True
     TITLE_ATTR: ClassVar[str | None] = "title"
 

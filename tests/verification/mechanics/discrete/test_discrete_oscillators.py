@@ -105,3 +105,19 @@ def test_nonlinear_spring_static_force_follows_its_curve_and_energy_is_conserved
     d_max = float(np.interp(12.5, work, dd))
     assert abs(u.max() / d_max - 1.0) < 0.01, (u.max(), d_max)
     assert abs(-u.min() / d_max - 1.0) < 0.01  # symmetric curve
+
+
+def test_reported_step_is_the_stability_limit_of_the_cycle():
+    """Spring k = 1 and damper c = 0.6 in parallel on 1 kg (xi = 0.3): the damped limit
+    (2/omega)(sqrt(1 + xi^2) - xi) = 1.488 ms is the step the element reports; the
+    solver's own cycle is stable just below it (TSSFAC 0.97) and unstable just above it
+    (1.05). The smaller of the two elements' own limits (2 ms spring, 3.33 ms damper)
+    would not be: the step sums the springs and dampers at a node."""
+    damper = "*MAT_DAMPER_VISCOUS\n" + f10(2, 0.6) + "\n"
+    limit = 2.0 * (np.sqrt(1.09) - 0.3)
+    for tssfac, stable in ((0.97, True), (1.05, False)):
+        dr = Driver(load(oscillator_deck([SPRING, damper], end=200.0, tssfac=tssfac)))
+        assert abs(dr.state.dt_next / tssfac - limit) < 1e-12
+        r = dr.run(200.0)
+        u = np.abs(r[:, 1] - 100.0)
+        assert (u[-50:].max() < 1e-3) == stable, (tssfac, u[-50:].max())
