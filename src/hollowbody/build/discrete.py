@@ -79,6 +79,9 @@ def _check_material(b, model: Model, mid: int, pid: int) -> None:  # noqa: ANN00
             raise fail(f"material {mid}: LCDL (the loading curve) is missing")
         if p["TYI"] < 0.0 or p["CYI"] > 0.0:
             raise fail(f"material {mid}: TYI must be >= 0 and CYI <= 0")
+        if p["BETA"] not in (0.0, 1.0) and p["TYI"] - p["CYI"] <= 0.0:
+            raise fail(f"material {mid}: kinematic hardening (BETA = {p['BETA']:g}) needs an "
+                       "elastic range: give the initial yield forces TYI > 0 and/or CYI < 0")
     if mat.kind == "spring_elastic" and p["K"] < 0.0:
         raise fail(f"material {mid}: K must be >= 0")
     if mat.kind == "damper_viscous" and p["DC"] < 0.0:

@@ -104,11 +104,13 @@ def _general_force(d: float, lx: np.ndarray, ly: np.ndarray, ux: np.ndarray, uy:
     trial = curve_value(ux, uy, d - shift)
     load = curve_value(lx, ly, d)
     if beta == 0.0:  # independent yield forces, softening along the curve allowed
-        upper = max(load, tyi)
-        lower = min(load, cyi)
+        yt, yc = tyi, cyi
     else:
-        upper = max(load, h[i, H_YT])
-        lower = min(load, h[i, H_YC])
+        yt, yc = h[i, H_YT], h[i, H_YC]
+    # the loading curve bounds the force on its own side only (tension where it is
+    # positive, compression where it is negative); the current yield forces elsewhere
+    upper = max(load, yt) if load > 0.0 else yt
+    lower = min(load, yc) if load < 0.0 else yc
     if trial > upper:
         force = upper
     elif trial < lower:
@@ -116,14 +118,13 @@ def _general_force(d: float, lx: np.ndarray, ly: np.ndarray, ux: np.ndarray, uy:
     else:
         return trial
     h[i, H_SHIFT] = d - curve_inverse(ux, uy, force)
-    yt, yc = h[i, H_YT], h[i, H_YC]
     if beta == 1.0:  # isotropic: both yield forces grow to the largest force reached
         big = max(abs(force), yt, -yc)
         h[i, H_YT] = big
         h[i, H_YC] = -big
-    elif beta != 0.0:  # kinematic: the elastic range moves with the force
+    elif beta != 0.0:  # kinematic: the elastic range [yc, yt] moves with the force
         width = yt - yc
-        if force > 0.0 and trial > upper:
+        if trial > upper:
             h[i, H_YT] = force
             h[i, H_YC] = force - width
         else:

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-from discrete_decks import Driver, crossings, curve, f10, load, oscillator_deck
+from discrete_decks import Driver, crossings, curve, f10, oscillator_deck
+from discrete_decks import load as load_model
 
 from hollowbody.solver.step import step
 
@@ -20,10 +21,10 @@ def _curve_value(pts, d):
     return float(np.interp(d, xs, ys))
 
 
-def _s06_runtime(beta: float = 1.0):
-    mat = ("*MAT_SPRING_GENERAL_NONLINEAR\n" + f10(1, 11, 12, beta, 0.0, 0.0) + "\n"
-           + curve(11, LOAD) + curve(12, UNLOAD))
-    dr = Driver(load(oscillator_deck([mat], v0=0.0, end=1.0)))
+def _s06_runtime(beta: float = 1.0, tyi: float = 0.0, cyi: float = 0.0, load=LOAD):
+    mat = ("*MAT_SPRING_GENERAL_NONLINEAR\n" + f10(1, 11, 12, beta, tyi, cyi) + "\n"
+           + curve(11, load) + curve(12, UNLOAD))
+    dr = Driver(load_model(oscillator_deck([mat], v0=0.0, end=1.0)))
     return dr.plan.elements[0], dr.state.x.copy()
 
 
@@ -35,17 +36,19 @@ def _force_at(rt, x, d):
     return -f[1, 0]
 
 
+def _path(rt, x, a, b, n):
+    return [(d, _force_at(rt, x, d)) for d in np.linspace(a, b, n + 1)[1:]]
+
+
 def test_s06_loads_on_lcdl_unloads_on_shifted_lcdu_and_dissipates_the_loop_area():
     rt, x = _s06_runtime()
-    up = np.linspace(0.0, 10.0, 2001)
-    for d in up[1:]:
-        assert abs(_force_at(rt, x, d) - _curve_value(LOAD, d)) < 1e-9
+    for d, f in _path(rt, x, 0.0, 10.0, 2000):
+        assert abs(f - _curve_value(LOAD, d)) < 1e-9
     # unloading from F = L(10) = 14: LCDU shifted along the deflection axis so that it
     # passes through (10, 14); U^-1(14) = 1.5 (end slope 8) -> shift 8.5 mm
     shift = 10.0 - 1.5
-    down = np.linspace(10.0, shift, 601)
-    for d in down[1:]:
-        assert abs(_force_at(rt, x, d) - _curve_value(UNLOAD, d - shift)) < 1e-9
+    for d, f in _path(rt, x, 10.0, shift, 600):
+        assert abs(f - _curve_value(UNLOAD, d - shift)) < 1e-9
     assert abs(rt.force[0]) < 1e-9
     # dissipated = loop area = int_0^10 L - int_shift^10 U(d - shift) (trapezoid, fine)
     dd = np.linspace(0.0, 10.0, 100001)
@@ -56,22 +59,43 @@ def test_s06_loads_on_lcdl_unloads_on_shifted_lcdu_and_dissipates_the_loop_area(
     assert abs(rt.energy[0] / (area_load - area_unload) - 1.0) < 1e-3
     # reloading: elastic on the shifted unloading curve up to the last force, then LCDL
     assert abs(_force_at(rt, x, 9.5) - _curve_value(UNLOAD, 1.0)) < 1e-9
-    for d in np.linspace(9.5, 12.0, 501)[1:]:
-        f = _force_at(rt, x, d)
+    for d, f in _path(rt, x, 9.5, 12.0, 500):
         assert f <= _curve_value(LOAD, d) + 1e-9
     assert abs(f - _curve_value(LOAD, 12.0)) < 1e-9
 
 
 def test_s06_isotropic_hardening_raises_the_compressive_yield():
+    """BETA = 1: after tension to 14 kN the compressive yield force is -14 kN: unloading
+    follows the shifted LCDU down to -14 kN (U^-1(-14) = -1.2, at d = 7.3) and then
+    yields at -14 kN while the loading curve has no compression branch there."""
     rt, x = _s06_runtime(beta=1.0)
-    for d in np.linspace(0.0, 10.0, 201)[1:]:
-        _force_at(rt, x, d)
-    # after tension to 14 kN, isotropic hardening: compressive yield at -14 kN, so
-    # unloading far into compression stops at max(L(d), ...) only below -14 kN
-    for d in np.linspace(10.0, 6.0, 401)[1:]:
-        f = _force_at(rt, x, d)
-    assert abs(f - (-14.0)) < 1e-9 or f > -14.0 - 1e-9
-    assert f < 0.0
+    _path(rt, x, 0.0, 10.0, 200)
+    for d, f in _path(rt, x, 10.0, 6.0, 400):
+        want = max(_curve_value(UNLOAD, d - 8.5), -14.0)
+        assert abs(f - want) < 1e-9, (d, f, want)
+    assert abs(f + 14.0) < 1e-9
+
+
+def test_s06_beta_zero_softens_along_the_loading_curve():
+    """BETA = 0: the force follows a loading curve that falls after its peak (softening),
+    never below the initial yield force TYI; BETA = 1 holds the peak instead."""
+    peak = [(0.0, 0.0), (2.0, 10.0), (4.0, 6.0), (10.0, 6.0)]
+    soft, x = _s06_runtime(beta=0.0, tyi=1.0, load=peak)
+    hard, _ = _s06_runtime(beta=1.0, tyi=1.0, load=peak)
+    for (d, fs), (_, fh) in zip(_path(soft, x, 0.0, 6.0, 600), _path(hard, x, 0.0, 6.0, 600)):
+        if d >= 0.1:  # elastic on LCDU up to TYI = 1 kN (d = 1/12 mm), then yielding
+            assert abs(fs - max(_curve_value(peak, d), 1.0)) < 1e-9, (d, fs)
+            assert abs(fh - max(_curve_value(peak, min(d, 2.0)), 1.0)) < 1e-9, (d, fh)
+
+
+def test_s06_kinematic_hardening_moves_the_elastic_range():
+    """BETA = 0.5 (kinematic), TYI = 4, CYI = -4: after tension to 14 kN the elastic range
+    [6, 14] kN: unloading leaves LCDU at +6 kN (reverse yield)."""
+    rt, x = _s06_runtime(beta=0.5, tyi=4.0, cyi=-4.0)
+    _path(rt, x, 0.0, 10.0, 200)
+    assert abs(rt.hist[0, 2] - 14.0) < 1e-9 and abs(rt.hist[0, 3] - 6.0) < 1e-9
+    for d, f in _path(rt, x, 10.0, 5.0, 500):
+        assert abs(f - max(_curve_value(UNLOAD, d - 8.5), 6.0)) < 1e-9, (d, f)
 
 
 TORSION = """\
@@ -122,7 +146,7 @@ torsion spring
 
 def test_torsional_spring_on_a_rigid_body_period():
     izz, kt = 50.0, 200.0  # kg*mm^2, kN*mm/rad: omega = 2 rad/ms, period pi ms
-    model = load(TORSION.format(end=15.0, izz=izz, kt=kt))
+    model = load_model(TORSION.format(end=15.0, izz=izz, kt=kt))
     dr = Driver(model)
     body = dr.plan.bodies[0]
     rows = []
