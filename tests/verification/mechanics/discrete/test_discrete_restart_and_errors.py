@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numba
 import numpy as np
 import pytest
 from discrete_decks import Driver, crossings, curve, f10, load, oscillator_deck
@@ -13,6 +14,7 @@ from hollowbody.api import run_model
 from hollowbody.build import build_model
 from hollowbody.errors import DeckError
 from hollowbody.io.keyword import read_deck
+from hollowbody.solver.restart import dump_files
 from hollowbody.solver.state import restore, snapshot
 from hollowbody.solver.step import step
 
@@ -45,6 +47,31 @@ def test_resumed_state_equals_the_straight_run():
              plan.elements[1].internal_energy)
     for a, b in zip(first, again):
         assert np.array_equal(a, b)
+
+
+@pytest.fixture
+def one_thread():
+    old = numba.get_num_threads()
+    numba.set_num_threads(1)
+    yield
+    numba.set_num_threads(old)
+
+
+def test_restart_file_resumes_the_run_exactly(tmp_path, one_thread):
+    """A run with restart files resumed from its second dump writes the same histories
+    (deforc, glstat, nodout) as the straight run, to the last digit (one thread)."""
+    text = oscillator_deck([S06, DAMPER], v0=20.0, end=20.0, tssfac=0.2).replace(
+        "*END", "*DATABASE_DEFORC\n      0.02\n*DATABASE_HISTORY_NODE\n         2\n*END")
+    straight, resumed = tmp_path / "a", tmp_path / "b"
+    ref = run_model(load(text), straight, vtk=False)
+    run_model(load(text), resumed, vtk=False, dump_cycles=40)
+    dumps = dump_files(resumed)
+    assert len(dumps) >= 2
+    res = run_model(load(text), resumed, vtk=False, restart=dumps[1], dump_cycles=0)
+    assert res.cycles == ref.cycles
+    for name in ("deforc.csv", "glstat.csv", "nodout.csv"):
+        assert (straight / name).read_text() == (resumed / name).read_text(), name
+    assert len((straight / "deforc.csv").read_text().splitlines()) > 100
 
 
 def _error(text: str) -> DeckError:
@@ -86,6 +113,13 @@ def test_spring_on_a_node_without_mass_is_refused_at_set_up():
     err = _error(text)
     assert "has no mass" in err.message and err.keyword == "ELEMENT_DISCRETE"
     assert err.line == len(text.splitlines()) - 1
+
+
+def test_torsional_spring_on_a_node_without_rotational_inertia_is_refused():
+    text = oscillator_deck([SPRING], dro=1).replace(f10(2, 0, 0, 1, 1, 1, 1, 1),
+                                                    f10(2, 0, 0, 1, 1))
+    err = _error(text)
+    assert "rotational inertia" in err.message and err.keyword == "ELEMENT_DISCRETE"
 
 
 def test_unsupported_section_options_are_refused():
