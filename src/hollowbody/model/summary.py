@@ -151,7 +151,8 @@ def summarize(model: Model) -> dict:
         name = LAW_NAMES.get(g.kind, g.kind) + (" (torsional)" if g.torsional else "")
         discrete[name] = discrete.get(name, 0) + g.n_elem
         count[g.pid] = count.get(g.pid, 0) + g.n_elem
-    elements["discrete"] = sum(discrete.values())
+    if discrete:
+        elements["discrete"] = sum(discrete.values())
     _, part_mass = lumped_node_mass(model)
     for pid, pin in model.part_inertia.items():
         if pin.tm > 0.0:
