@@ -34,24 +34,30 @@ H_THETA, H_SHIFT, H_YT, H_YC = 0, 1, 2, 3
 
 
 @njit(cache=True)
+def curve_segment(cx: np.ndarray, t: float) -> int:
+    """Index k of the segment [cx[k], cx[k+1]] holding t (0 / m-2 beyond the ends);
+    bisection, cx (m >= 2,) increasing."""
+    m = cx.size
+    if t <= cx[0]:
+        return 0
+    if t >= cx[m - 1]:
+        return m - 2
+    lo, hi = 0, m - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if cx[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
 def curve_value(cx: np.ndarray, cy: np.ndarray, t: float) -> float:
     """y(t) of the piecewise-linear curve (cx, cy), extrapolated with the end slopes."""
-    m = cx.size
-    if m == 1:
+    if cx.size == 1:
         return cy[0]
-    if t <= cx[0]:
-        k = 0
-    elif t >= cx[m - 1]:
-        k = m - 2
-    else:
-        lo, hi = 0, m - 1
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if cx[mid] <= t:
-                lo = mid
-            else:
-                hi = mid
-        k = lo
+    k = curve_segment(cx, t)
     s = (cy[k + 1] - cy[k]) / (cx[k + 1] - cx[k])
     return cy[k] + s * (t - cx[k])
 
@@ -63,9 +69,7 @@ def curve_slope_near(cx: np.ndarray, cy: np.ndarray, t: float) -> float:
     m = cx.size
     if m < 2:
         return 0.0
-    k = 0
-    while k < m - 2 and cx[k + 1] <= t:
-        k += 1
+    k = curve_segment(cx, t)
     best = 0.0
     for j in range(max(k - 1, 0), min(k + 2, m - 1)):
         s = abs((cy[j + 1] - cy[j]) / (cx[j + 1] - cx[j]))
