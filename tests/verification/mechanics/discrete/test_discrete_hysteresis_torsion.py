@@ -6,6 +6,7 @@ import numpy as np
 from discrete_decks import Driver, crossings, curve, f10, oscillator_deck
 from discrete_decks import load as load_model
 
+from hollowbody.solver.energies import energies
 from hollowbody.solver.step import step
 
 LOAD = [(0.0, 0.0), (2.0, 10.0), (10.0, 14.0), (20.0, 16.0)]  # kN vs mm
@@ -153,8 +154,8 @@ def test_torsional_spring_on_a_rigid_body_period():
     s = dr.state
     while s.t < 15.0:
         step(model, dr.plan, s, s.dt_next)
-        rows.append((s.t, body.omega[2]))
-    t, w = np.array(rows).T
+        rows.append((s.t, body.omega[2], energies(dr.plan, s)["total"]))
+    t, w, total = np.array(rows).T
     periods = np.diff(crossings(t, w))
     exact = 2.0 * np.pi * np.sqrt(izz / kt)
     assert periods.size >= 3
@@ -164,3 +165,6 @@ def test_torsional_spring_on_a_rigid_body_period():
     rt = dr.plan.elements[0]
     assert rt.torsional and rt.n_elem == 1
     assert abs(np.abs(w).max() - 1.0) < 0.01
+    # balance: body kinetic + spring energy = 0.5 Izz w0^2 = 25 J (full-step estimates,
+    # O((omega dt)^2) = 1 % swing at most)
+    assert np.all(np.abs(total / (0.5 * izz) - 1.0) < 0.01), (total.min(), total.max())
