@@ -53,8 +53,8 @@ class DiscreteGroupRuntime:
     elem_ids (e,) int64, conn (e, 2) int32 node indices (a grounded element
     repeats N1), n_elem, alive (e,) bool, force (e,) kN (torsional kN*mm, S
     applied), defl (e,) mm or rad, rate (e,), energy (e,) J per element,
-    internal_energy (J, sum), hourglass_energy (0), stress (e, 6) (column 0 the
-    force, for the solver's checks), mass (e,) zeros (no element mass),
+    internal_energy (J, sum), hourglass_energy (0), stress (e, 6) zeros (NaN where the
+    force is not finite, for the solver's checks), mass (e,) zeros (no element mass),
     k_bound (e,) and c_bound (e,) the stiffness and damping used for the step.
     """
 
@@ -215,7 +215,9 @@ class DiscreteGroupRuntime:
                                  self.rate, self.direction, self.energy, self.k_other,
                                  self.c_use, self.minv, self._dte, f, mom)
         self.internal_energy = float(self.energy.sum())
-        self.stress[:, 0] = self.force
+        # no stress in a spring: zeros, but a non-finite force shows (the solver's
+        # non-finite check names the element from it)
+        self.stress[:, 0] = 0.0 * self.force
         if failed >= 0:
             for i in np.nonzero(~self.alive)[0]:
                 if int(i) not in self.failed:

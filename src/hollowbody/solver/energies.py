@@ -11,12 +11,13 @@ import numpy as np
 
 
 def _half_next(state) -> float:  # noqa: ANN001 - State
-    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set, and at
-    cycle 0, whose velocities are the initial, full-step ones: a damper's force at
-    t = 0 would otherwise shift the initial kinetic energy)."""
+    """Half the step just taken (ms): v^{n+1/2} lies that far before t^{n+1}, so the
+    full-step velocity is v^{n+1/2} + (dt/2) a^{n+1} (also after a step shortened to
+    reach the end time). 0 at cycle 0, whose velocities are the initial, full-step
+    ones (a damper's force at t = 0 would otherwise shift the initial kinetic energy)."""
     if state.cycle == 0:
         return 0.0
-    return 0.5 * state.dt_next if np.isfinite(state.dt_next) else 0.0
+    return 0.5 * state.dt if np.isfinite(state.dt) else 0.0
 
 
 def node_velocity_full_step(plan, state) -> np.ndarray:  # noqa: ANN001

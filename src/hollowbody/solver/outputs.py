@@ -308,6 +308,9 @@ class RunOutputs:
             self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
         for g in self.model.shell_groups:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
+        for rt in self.asm.elements:  # springs and dampers as lines (stress xx: force)
+            if getattr(rt, "family", "") == "discrete":
+                self._add_block(cells, data, "line", rt, rt)
         if not cells:
             return
         u = state.x - self.asm.node_x0

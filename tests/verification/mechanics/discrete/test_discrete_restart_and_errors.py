@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import meshio
 import numba
 import numpy as np
 import pytest
@@ -145,7 +146,14 @@ def test_grounded_spring_with_a_fixed_orientation():
 
 def test_example_deck_runs(tmp_path):
     model = build_model(read_deck(EXAMPLE))
-    res = run_model(model, tmp_path, end_time=10.0, vtk=False)
+    res = run_model(model, tmp_path, end_time=10.0)
     assert res.status == "normal termination"
+    assert abs(res.summary["energy_ratio"] - 1.0) < 0.01
     rows = (tmp_path / "deforc.csv").read_text().splitlines()
     assert rows[0].startswith("time [ms],element") and len(rows) > 100
+    # matsum: the spring stores, the damper dissipates; states: the elements as lines
+    last = {int(r.split(",")[1]): float(r.split(",")[3])
+            for r in (tmp_path / "matsum.csv").read_text().splitlines()[-2:]}
+    assert last[2] > 0.2 and last[1] >= 0.0
+    mesh = meshio.read(sorted(tmp_path.glob("states_*.vtu"))[-1])
+    assert [c.type for c in mesh.cells] == ["line"] and len(mesh.cells[0].data) == 2
