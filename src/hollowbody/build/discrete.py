@@ -72,6 +72,8 @@ def _check_material(b, model: Model, mid: int, pid: int) -> None:  # noqa: ANN00
         lc = int(p.get(key, 0.0))
         if lc and lc not in model.curves:
             raise fail(f"material {mid} refers to curve {lc} ({key}) which is not defined")
+        if lc and model.curves[lc].x.size < 2:
+            raise fail(f"material {mid}: curve {lc} ({key}) needs at least two points")
     if mat.kind == "spring_nonlinear" and not int(p["LCD"]):
         raise fail(f"material {mid}: LCD (the force-deflection curve) is missing")
     if mat.kind == "spring_general":

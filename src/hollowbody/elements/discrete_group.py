@@ -29,7 +29,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from hollowbody.elements.discrete_kernels import H_YC, H_YT, discrete_forces
+from hollowbody.elements.discrete_kernels import (
+    H_SHIFT,
+    H_YC,
+    H_YT,
+    curve_inverse,
+    discrete_forces,
+)
 from hollowbody.errors import DeckError
 from hollowbody.model.discrete import DISCRETE_LAWS, LAW_NAMES, DiscreteGroup
 
@@ -128,6 +134,8 @@ class DiscreteGroupRuntime:
         self.hist = np.zeros((e, 4))
         self.hist[:, H_YT] = self.params[2]
         self.hist[:, H_YC] = self.params[3]
+        if self.law == 6:  # LCDU placed with its zero force at zero deflection
+            self.hist[:, H_SHIFT] = -curve_inverse(self.ux, self.uy, 0.0)
         self.force = np.zeros(e)
         self.defl = self.offset.copy()
         self.rate = np.zeros(e)

@@ -168,3 +168,14 @@ def test_torsional_spring_on_a_rigid_body_period():
     # balance: body kinetic + spring energy = 0.5 Izz w0^2 = 25 J (full-step estimates,
     # O((omega dt)^2) = 1 % swing at most)
     assert np.all(np.abs(total / (0.5 * izz) - 1.0) < 0.01), (total.min(), total.max())
+
+
+def test_s06_unloading_curve_not_through_the_origin_gives_no_force_at_rest():
+    """An LCDU whose zero force is at 0.5 mm is placed with it at zero deflection: no
+    force at rest, and the first elastic response is U(d + 0.5)."""
+    mat = ("*MAT_SPRING_GENERAL_NONLINEAR\n" + f10(1, 11, 12, 1.0, 5.0, -5.0) + "\n"
+           + curve(11, LOAD) + curve(12, [(0.0, -10.0), (0.5, 0.0), (1.5, 20.0)]))
+    dr = Driver(load_model(oscillator_deck([mat], v0=0.0, end=1.0)))
+    rt, x = dr.plan.elements[0], dr.state.x.copy()
+    assert rt.force[0] == 0.0
+    assert abs(_force_at(rt, x, 0.1) - 2.0) < 1e-12  # 20 kN/mm x 0.1 mm, below TYI
