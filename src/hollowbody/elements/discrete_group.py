@@ -232,7 +232,11 @@ class DiscreteGroupRuntime:
                     self.failed.append(int(i))
         if self.n_elem == 0:
             return np.inf, -1, -1
-        i = int(np.argmin(self._dte))
+        if self.failed and self.alive.any():  # failed elements (FD) set no step
+            live = np.nonzero(self.alive)[0]
+            i = int(live[np.argmin(self._dte[live])])
+        else:  # all failed: their last steps, so a run of springs alone goes on
+            i = int(np.argmin(self._dte))
         d = float(self._dte[i])
         return (d, i, -1) if np.isfinite(d) else (np.inf, -1, -1)
 

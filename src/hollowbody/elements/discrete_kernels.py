@@ -229,7 +229,6 @@ def discrete_forces(law: int, torsional: bool, x: np.ndarray, v: np.ndarray, w: 
         if fd > 0.0 and abs(d) > fd:  # failure deflection: the element is deleted
             fs = 0.0
             alive[i] = False
-            dte[i] = np.inf
             if failed < 0:
                 failed = i
         energy[i] += 0.5 * (force[i] + fs) * (d - defl[i])

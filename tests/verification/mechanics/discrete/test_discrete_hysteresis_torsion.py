@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from discrete_decks import Driver, crossings, curve, f10, oscillator_deck
 from discrete_decks import load as load_model
 
@@ -145,9 +146,20 @@ torsion spring
 """
 
 
-def test_torsional_spring_on_a_rigid_body_period():
+GROUNDED = ("       1       2       1       2       0",
+            "       1       2       2       0       9")
+
+
+@pytest.mark.parametrize("grounded", [False, True])
+def test_torsional_spring_on_a_rigid_body_period(grounded):
+    """Between a fixed node and the body's centre node (axis along their line), or
+    grounded (N2 = 0) about a *DEFINE_SD_ORIENTATION vector along z."""
     izz, kt = 50.0, 200.0  # kg*mm^2, kN*mm/rad: omega = 2 rad/ms, period pi ms
-    model = load_model(TORSION.format(end=15.0, izz=izz, kt=kt))
+    text = TORSION.format(end=15.0, izz=izz, kt=kt)
+    if grounded:
+        text = text.replace(*GROUNDED).replace(
+            "*END", "*DEFINE_SD_ORIENTATION\n" + f10(9, 0, 0.0, 0.0, 1.0) + "\n*END")
+    model = load_model(text)
     dr = Driver(model)
     body = dr.plan.bodies[0]
     rows = []

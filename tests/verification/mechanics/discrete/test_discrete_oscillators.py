@@ -121,3 +121,20 @@ def test_reported_step_is_the_stability_limit_of_the_cycle():
         r = dr.run(200.0)
         u = np.abs(r[:, 1] - 100.0)
         assert (u[-50:].max() < 1e-3) == stable, (tssfac, u[-50:].max())
+
+
+def test_failure_deflection_releases_the_mass_with_the_energy_left():
+    """FD = 0.6 mm on a spring whose free amplitude is 1 mm: the element is deleted when
+    |d| > FD and the mass flies on with 0.5 m v^2 = 0.5 m v0^2 - 0.5 k FD^2, v = 0.8;
+    the spring's energy stays in the balance."""
+    text = oscillator_deck([SPRING], end=3.0).replace(f10(1, 0) + "\n",
+                                                       f10(1, 0, 0.0, 0.0, 0.0, 0.6) + "\n")
+    dr = Driver(load(text))
+    r = dr.run(3.0)
+    rt = dr.plan.elements[0]
+    assert not rt.alive[0] and rt.force[0] == 0.0 and 0.6 < rt.defl[0] < 0.7
+    v_end = r[-1, 4]
+    want = np.sqrt(1.0 - 0.6 ** 2)  # m = k = 1, v0 = 1
+    # 1 %: the spring fails within one step's motion (0.08 mm) beyond FD
+    assert abs(v_end / want - 1.0) < 0.01, v_end
+    assert np.all(np.diff(r[-5:, 1]) > 0.0) and abs(r[-1, 9] / 0.5 - 1.0) < 0.01
