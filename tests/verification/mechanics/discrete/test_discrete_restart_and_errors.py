@@ -157,3 +157,43 @@ def test_example_deck_runs(tmp_path):
     assert last[2] > 0.2 and last[1] >= 0.0
     mesh = meshio.read(sorted(tmp_path.glob("states_*.vtu"))[-1])
     assert [c.type for c in mesh.cells] == ["line"] and len(mesh.cells[0].data) == 2
+
+
+@pytest.mark.parametrize("edit, words, keyword", [
+    # orientation with IOP 1 (vector from nodes)
+    (lambda t: t.replace("       1       1       1       2       0",
+                         "       1       1       1       2       4").replace(
+        "*END", "*DEFINE_SD_ORIENTATION\n" + f10(4, 1, 1.0) + "\n*END"),
+     "IOP 1", "DEFINE_SD_ORIENTATION"),
+    # orientation that does not exist
+    (lambda t: t.replace("       1       1       1       2       0",
+                         "       1       1       1       2       4"),
+     "VID 4", "ELEMENT_DISCRETE"),
+    # an element id twice
+    (lambda t: t.replace("*END", "*ELEMENT_DISCRETE\n" + "       1       1       1       2\n"
+                         + "*END"), "defined twice", "ELEMENT_DISCRETE"),
+    # a part that does not exist
+    (lambda t: t.replace("       1       1       1       2       0",
+                         "       1       8       1       2       0"),
+     "part 8", "ELEMENT_DISCRETE"),
+    # kinematic hardening without an elastic range
+    (lambda t: t.replace("*MAT_SPRING_ELASTIC\n" + f10(1, 1.0),
+                         "*MAT_SPRING_GENERAL_NONLINEAR\n" + f10(1, 11, 0, 0.5)).replace(
+        "*END", curve(11, [(0.0, 0.0), (1.0, 1.0)]) + "*END"),
+     "elastic range", "MAT_SPRING_GENERAL_NONLINEAR"),
+])
+def test_bad_references_are_refused_at_their_card(edit, words, keyword):
+    err = _error(edit(oscillator_deck([SPRING])))
+    assert words in err.message and err.keyword == keyword and err.file == "bad.k"
+    assert err.line and err.line > 0
+
+
+def test_cli_exits_2_with_the_place_for_a_bad_spring(tmp_path, capsys):
+    from hollowbody.cli.main import main as cli_main
+
+    deck = tmp_path / "springs.k"
+    deck.write_text(oscillator_deck([SPRING], length=0.0))
+    for args in (["check", str(deck)], ["run", str(deck), "--out", str(tmp_path / "o")]):
+        assert cli_main(args) == 2
+        err = capsys.readouterr().err
+        assert "springs.k:" in err and "*ELEMENT_DISCRETE" in err and "Traceback" not in err
