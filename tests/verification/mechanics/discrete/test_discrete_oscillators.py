@@ -138,3 +138,17 @@ def test_failure_deflection_releases_the_mass_with_the_energy_left():
     # 1 %: the spring fails within one step's motion (0.08 mm) beyond FD
     assert abs(v_end / want - 1.0) < 0.01, v_end
     assert np.all(np.diff(r[-5:, 1]) > 0.0) and abs(r[-1, 9] / 0.5 - 1.0) < 0.01
+
+
+def test_mass_scaling_adds_no_mass_for_springs_and_keeps_their_step():
+    """DT2MS = -5 ms above the spring's 2 ms step: mass scaling adds no mass for a
+    (massless) discrete element, and the run keeps the spring's own step instead of
+    reporting the target it could not reach."""
+    text = oscillator_deck([SPRING], end=1.0, tssfac=0.5).replace(
+        "*CONTROL_TIMESTEP\n" + f10(0.0, 0.5), "*CONTROL_TIMESTEP\n" + f10(0.0, 0.5, 0, 0.0,
+                                                                          -5.0))
+    dr = Driver(load(text))
+    assert dr.state.mass_scaling.target == 5.0
+    dr.run(1.0)
+    assert dr.state.mass_scaling.total_added == 0.0
+    assert abs(dr.state.dt_next - 0.5 * 2.0) < 1e-12  # TSSFAC x 2 sqrt(m / k)
