@@ -51,6 +51,7 @@ from hollowbody.io.keyword import (
     PrescribedMotionKeyword,
     PrescribedMotionRigid,
     PrescribedMotionSet,
+    SectionDiscrete,
     SectionShell,
     SectionSolid,
     SetNodeList,
@@ -66,7 +67,7 @@ from hollowbody.model import model as m
 from hollowbody.model.rigid_bodies import local_axes_inertia
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
-OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rwforc")
+OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rwforc", "deforc")
 # *NODE TC / RC and *MAT_RIGID CON codes -> constrained axes.
 _AXES = {0: (), 1: (0,), 2: (1,), 3: (2,), 4: (0, 1), 5: (1, 2), 6: (2, 0), 7: (0, 1, 2)}
 _MOTION_DOFS = (1, 2, 3, 5, 6, 7)
@@ -198,9 +199,12 @@ class _Builder:
 
     def sections(self) -> dict[int, m.SectionDef]:
         out: dict[int, m.SectionDef] = {}
-        items = self.of(SectionSolid) + self.of(SectionShell)
+        items = self.of(SectionSolid) + self.of(SectionShell) + self.of(SectionDiscrete)
         for secid, s in _unique_ids(items, "section", "secid").items():
-            if isinstance(s, SectionShell):
+            if isinstance(s, SectionDiscrete):  # build.discrete reads the rest
+                out[secid] = m.SectionDef(secid, "discrete", 0, {"DRO": float(s.dro)},
+                                          s.title, s.source)
+            elif isinstance(s, SectionShell):
                 t1 = s.t1
                 params = {"T1": t1, "T2": _or(s.t2, t1), "T3": _or(s.t3, t1),
                           "T4": _or(s.t4, t1), "NIP": float(_or(s.nip, 2)),

@@ -128,6 +128,9 @@ def print_summary(s: dict) -> None:
               (f", {e['other_solids']} other" if e["other_solids"] else "") +
               f"; shells: {e['shells']} quadrilaterals, {e['triangles']} triangles; "
               f"mass elements {e['mass_elements']}")
+    if s.get("discrete"):
+        con.print("discrete elements: " + "; ".join(f"{n} {law}" for law, n in
+                                                     s["discrete"].items()), markup=False)
     table = Table(title="parts", title_justify="left")
     for col in ("pid", "title", "elements", "section", "material", "mass (kg)"):
         table.add_column(col, justify="right" if col in ("pid", "elements", "mass (kg)")
@@ -157,7 +160,8 @@ def print_summary(s: dict) -> None:
     ts = s["time_step"] or {"solid": None, "shell": None, "run_dt": None}
     if s["time_step"] is not None:
         con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; "
-                  f"shells {_fmt_dt(ts['shell'])}")
+                  f"shells {_fmt_dt(ts['shell'])}" + (f"; discrete {_fmt_dt(ts['discrete'])}"
+                                                      if ts.get("discrete") else ""))
     if ts["run_dt"]:
         con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "

@@ -50,6 +50,11 @@ MATERIAL_PARAMS = {
     "rubber181": ("KM", "MU", "G", "SIGF", "REF", "SGL", "SW", "ST", "LCID"),  # 181
     "plastic003": ("E", "PR", "SIGY", "ETAN", "BETA", "SRC", "SRP"),  # 003
     "pwl024": ("E", "PR", "SIGY", "ETAN", "FAIL", "TDEL", "C", "P", "LCSS", "LCSR"),  # 024
+    # discrete springs and dampers (model.discrete, docs/discrete.md)
+    "spring_elastic": ("K",),  # *MAT_SPRING_ELASTIC (S01)
+    "damper_viscous": ("DC",),  # *MAT_DAMPER_VISCOUS (S02)
+    "spring_nonlinear": ("LCD", "LCR"),  # *MAT_SPRING_NONLINEAR_ELASTIC (S04)
+    "spring_general": ("LCDL", "LCDU", "BETA", "TYI", "CYI"),  # *MAT_SPRING_GENERAL_NONLINEAR
 }
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.errors import DeckError
+from hollowbody.model.discrete import LAW_NAMES
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas
 from hollowbody.model.model import Model
 from hollowbody.model.rigid_bodies import rigid_body_summary
@@ -148,6 +149,13 @@ def summarize(model: Model) -> dict:
         elements["triangles"] += tri
         elements["shells"] += g.conn.shape[0] - tri
         count[g.pid] = count.get(g.pid, 0) + g.conn.shape[0]
+    discrete: dict[str, int] = {}  # discrete elements per law (model.discrete)
+    for g in model.discrete_groups:
+        name = LAW_NAMES.get(g.kind, g.kind) + (" (torsional)" if g.torsional else "")
+        discrete[name] = discrete.get(name, 0) + g.n_elem
+        count[g.pid] = count.get(g.pid, 0) + g.n_elem
+    if discrete:
+        elements["discrete"] = sum(discrete.values())
     node_mass, part_mass = lumped_node_mass(model)
     for pid, pin in model.part_inertia.items():
         if pin.tm > 0.0:
@@ -174,6 +182,7 @@ def summarize(model: Model) -> dict:
         "bounding_box": {"min": x.min(axis=0).tolist() if x.size else None,
                          "max": x.max(axis=0).tolist() if x.size else None},
         "end_time": model.controls.end_time,
+        "discrete": discrete,
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),
         "unsupported": unsupported_entries(model),
@@ -198,12 +207,13 @@ def problems(model: Model, summary: dict) -> list[str]:
     out = []
     if model.n_nodes == 0:
         out.append("no nodes")
-    if not model.solid_groups and not model.shell_groups:
+    if not model.solid_groups and not model.shell_groups and not model.discrete_groups:
         out.append("no elements")
     if model.controls.end_time <= 0.0:
         out.append("no termination time (*CONTROL_TERMINATION ENDTIM is 0)")
     for part in summary["parts"]:
-        if part["elements"] and part["mass_kg"] <= 0.0:
+        if part["elements"] and part["mass_kg"] <= 0.0 and \
+                not part["section"].startswith("*SECTION_DISCRETE"):  # massless springs
             out.append(f"part {part['pid']} has no mass (density RO of {part['material']})")
     for g in model.solid_groups:
         vol = hex_volumes(g.conn, model.node_x0)

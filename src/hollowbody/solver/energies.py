@@ -50,7 +50,7 @@ def kinetic_energy(plan, state) -> float:  # noqa: ANN001
 def rigid_kinetic_energy(body, half: float) -> float:  # noqa: ANN001 - RigidBody
     """Kinetic energy (J) of a rigid body at the full step, as for the nodes:
     V^{n+1/2} + dt/2 F^{n+1} / M and w^{n+1/2} + dt/2 I^{-1} (M^{n+1} - w x I w)
-    (constrained and prescribed components unchanged; ``half`` = dt^{n+1} / 2 ms)."""
+    (constrained and prescribed components unchanged; ``half`` = dt^n / 2 ms)."""
     acc = body.force / body.mass if body.mass > 0.0 else np.zeros(3)
     acc = np.where(body.fixed_trans | body.prescribed_trans, 0.0, acc)
     vel = body.vel + half * acc

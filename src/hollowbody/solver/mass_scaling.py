@@ -133,6 +133,8 @@ class MassScaling:
             self._di[hit] = 0.0
 
     def _scale_group(self, g: _GroupState, rt) -> bool:  # noqa: ANN001
+        if not getattr(rt, "mass_scaled", True):  # massless (discrete): the step stays
+            return False
         d = rt.dt_elem * getattr(rt, "step_factor", 1.0) * np.sqrt(g.mfac)
         need = np.nonzero((d < self.target) & rt.alive)[0]
         if need.size == 0:

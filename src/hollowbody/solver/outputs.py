@@ -7,6 +7,7 @@
 - ``spcforc.csv`` total SPC reaction force;
 - ``rwforc.csv``  rigid-wall forces (normal, tangential, components) per wall;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
+- ``deforc.csv``  force, elongation and energy of each discrete element (PF = 0);
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
 - ``d3plot`` (+ ``d3plot01``) the same states for LS-PrePost (optional extra lasso-python; when
   the deck has *DATABASE_BINARY_D3PLOT or the run asks for it), written at the end;
@@ -144,7 +145,8 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         f.unlink()
 
 
-HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "rwforc")
+HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "rwforc",
+             "deforc")
 
 
 class RunOutputs:
@@ -169,7 +171,7 @@ class RunOutputs:
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
                        for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout",
-                                    "rwforc")}
+                                    "rwforc", "deforc")}
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
@@ -206,6 +208,9 @@ class RunOutputs:
         self.rwforc = HistoryWriter(self.out / "rwforc.csv", [
             "time [ms]", "wall", "normal [kN]", "tangential [kN]", "fx [kN]", "fy [kN]",
             "fz [kN]"], pos.get("rwforc"))
+        self.deforc = HistoryWriter(self.out / "deforc.csv", [
+            "time [ms]", "element", "force [kN|kN*mm]", "elongation [mm|rad]", "energy [J]"],
+            pos.get("deforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
         if resume is not None:
@@ -276,6 +281,12 @@ class RunOutputs:
                 self.rwforc.write([t, w.rwid, w.normal_force(), w.tangential_force(), *w.force])
         if self.clocks["matsum"].due(t) or force:
             self._write_matsum(state)
+        if self.clocks["deforc"].due(t) or force:
+            for rt in self.asm.elements:
+                if getattr(rt, "family", "") == "discrete":
+                    for i in np.nonzero(rt.print_flag == 0)[0]:
+                        self.deforc.write([t, int(rt.elem_ids[i]), rt.force[i], rt.defl[i],
+                                           rt.energy[i]])
         if (self.vtk is not None or self.d3plot is not None) and \
                 (self.state_clock.due(t) or force):
             self.write_state(state)
@@ -333,6 +344,9 @@ class RunOutputs:
             self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
         for g in self.model.shell_groups:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
+        for rt in self.asm.elements:  # springs and dampers as lines (stress xx: force)
+            if getattr(rt, "family", "") == "discrete":
+                self._add_block(cells, data, "line", rt, rt)
         if not cells:
             return
         u = state.x - self.asm.node_x0

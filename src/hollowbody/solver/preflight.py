@@ -22,7 +22,8 @@ from hollowbody.solver.step import Termination, start
 def _smallest(plan, rotational: bool) -> dict | None:  # noqa: ANN001 - Assembly
     best = None
     for rt in plan.elements:
-        if bool(getattr(rt, "rotational", False)) != rotational or rt.n_elem == 0:
+        if bool(getattr(rt, "rotational", False)) != rotational or rt.n_elem == 0 \
+                or getattr(rt, "family", "") == "discrete":  # reported as "discrete"
             continue
         d = np.asarray(rt.dt_elem) * getattr(rt, "step_factor", 1.0)
         k = int(np.argmin(d))
@@ -54,7 +55,14 @@ def first_time_step(model, threads: int | str | None = None) -> dict:  # noqa: A
     with th.using(n_threads):
         start(model, plan, state)
     elem, pid = state.dt_crit_elem
+    disc = [rt for rt in plan.elements if getattr(rt, "family", "") == "discrete"]
+    steps = [(float(np.min(rt.dt_elem)), rt) for rt in disc if rt.n_elem]
+    low = min(steps, key=lambda p: p[0], default=None)
+    discrete = None if low is None or not np.isfinite(low[0]) else {
+        "dt": low[0], "element": int(low[1].elem_ids[int(np.argmin(low[1].dt_elem))]),
+        "part": int(low[1].pid)}
     return {"solid": _smallest(plan, False), "shell": _smallest(plan, True),
+            "discrete": discrete,
             "tssfac": plan.tssfac, "run_dt": float(state.dt_next), "element": int(elem),
             "part": int(pid), "mass_scaling_target": state.mass_scaling.target,
             "threads": {"count": n_threads, "reason": why}}

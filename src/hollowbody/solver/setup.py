@@ -150,6 +150,9 @@ def assemble(model: Model) -> Assembly:
     for rt in [*beam_runtimes(model, x0), *discrete_runtimes(model, x0)]:
         counts[rt.family] = counts.get(rt.family, 0) + int(rt.n_elem)
         asm.elements.append(rt)
+    for rt in asm.elements:  # massless discrete parts: in matsum with their energy
+        if getattr(rt, "family", "") == "discrete":
+            asm.part_share.setdefault(rt.pid, PartShare(np.zeros(0, np.int64), np.zeros(0)))
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:
@@ -166,6 +169,10 @@ def assemble(model: Model) -> Assembly:
         if b.pnode >= 0:  # a nodal rigid body's PNODE starts at its centre of mass
             asm.node_x0[b.pnode] = b.xc
     asm.constraints = Constraints(model, asm.bodies)
+    from hollowbody.elements.discrete_group import bind_discrete  # springs' steps, masses
+
+    bind_discrete(asm.elements, node_mass, asm.node_rot_inertia, asm.bodies,
+                  asm.constraints.fixed, asm.constraints.fixed_rot)
     asm.rigid_dt = rigid_element_step(model, x0)
     asm.erode = bool(model.controls.erode)
     rigid_node = ~asm.deformable
