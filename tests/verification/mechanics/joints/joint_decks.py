@@ -1,0 +1,139 @@
+"""Rigid bodies on joints for the joint verification tests (built with the Deck API).
+
+Every body is one rigid hexahedron (its elements only carry the nodes and set the
+run's step through *MAT_RIGID's E, PR and density); its mass properties come from
+*PART_INERTIA, so the analytical values use exactly the mass, centre and inertia
+the solver uses. Gravity is a test-only force term (:class:`Gravity`) acting on
+the rigid bodies as a whole, scaled (``g`` argument) so that a pendulum period
+takes a few thousand cycles instead of millions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.build import build_model
+from hollowbody.io.keyword import (
+    ConstrainedJoint,
+    ControlTermination,
+    Deck,
+    MatRigid,
+    Part,
+    PartInertia,
+    SectionSolid,
+)
+from hollowbody.solver.setup import assemble
+from hollowbody.solver.state import init_state
+from hollowbody.solver.step import start, step
+
+#: *MAT_RIGID of the bodies: E (GPa) and density (kg/mm^3) that give a 10 mm hexahedron
+#: a step of about 0.045 ms (TSSFAC 0.9); they set nothing else.
+E_STEP, RHO_STEP = 0.03, 1.0e-6
+G_EARTH = 9.81e-3
+
+
+def hexa(corner: np.ndarray, size: float = 10.0) -> np.ndarray:
+    """(8, 3) nodes of the cube [corner, corner + size], LS-DYNA order."""
+    c = np.asarray(corner, float)
+    unit = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                     [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+    return c + size * unit
+
+
+def add_body(deck: Deck, pid: int, corner, *, fixed: bool = False,  # noqa: ANN001
+             mass: float = 1.0, centre=(0.0, 0.0, 0.0), inertia=(1.0, 1.0, 1.0),
+             size: float = 10.0, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """One rigid hexahedron body, part ``pid`` (nodes 100 pid + 1..8, element pid);
+    returns its node ids. ``fixed``: all 6 DOFs fixed (CMO = 1, CON1 = CON2 = 7);
+    otherwise *PART_INERTIA mass (kg), centre (mm), principal inertia (kg*mm^2) about
+    global axes, initial velocity v0 (mm/ms) and angular velocity w0 (rad/ms)."""
+    ids = 100 * pid + np.arange(1, 9)
+    deck.add_nodes(ids, hexa(corner, size))
+    deck.add_solids(np.array([pid]), pid, ids[None, :])
+    deck.add(SectionSolid(secid=1)) if not any(
+        isinstance(i, SectionSolid) for i in deck.items) else None
+    deck.add(MatRigid(mid=pid, ro=RHO_STEP, e=E_STEP, pr=0.3,
+                      **({"cmo": 1, "con1": 7, "con2": 7} if fixed else {})))
+    if fixed:
+        deck.add(Part(pid=pid, secid=1, mid=pid, title=f"body {pid}"))
+    else:
+        deck.add(PartInertia(pid=pid, secid=1, mid=pid, title=f"body {pid}",
+                             xc=centre[0], yc=centre[1], zc=centre[2], tm=mass,
+                             ixx=inertia[0], iyy=inertia[1], izz=inertia[2],
+                             vtx=v0[0], vty=v0[1], vtz=v0[2], vrx=w0[0], vry=w0[1], vrz=w0[2]))
+    return ids
+
+
+def pendulum(kind: str = "SPHERICAL", theta0: float = 5.0, d: float = 100.0,
+             radius_gyration: float = 30.0, mass: float = 1.0, end: float = 1.0,
+             rps: float = 1.0, damp: float = 1.0) -> Deck:
+    """A ground body (fixed, part 1) and a pendulum (part 2) on a joint at the origin.
+
+    The pendulum's centre of mass is at distance d (mm) from the joint, at angle
+    theta0 (degrees) from the downward vertical in the x-z plane; its inertia is
+    isotropic (radius of gyration in mm). SPHERICAL: N1 = node 101 (ground, at the
+    origin), N2 = node 201 (pendulum, at the origin); REVOLUTE adds the pair on the
+    y axis (ground node 104 and pendulum node 204 at (0, 10, 0)).
+    """
+    deck = Deck()
+    deck.title = f"{kind.lower()} pendulum"
+    g = add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
+    # ground cube [-10,0]x[0,10]x[0,10]: its node 2 is the origin, node 3 (0, 10, 0)
+    th = np.radians(theta0)
+    centre = (d * np.sin(th), 0.0, -d * np.cos(th))
+    i = mass * radius_gyration ** 2
+    p = add_body(deck, 2, (0.0, 0.0, -10.0), mass=mass, centre=centre, inertia=(i, i, i))
+    # pendulum cube [0,10]x[0,10]x[-10,0]: node 5 is the origin, node 8 (0, 10, 0)
+    if kind == "SPHERICAL":
+        deck.add(ConstrainedJoint(kind=kind, n1=int(g[1]), n2=int(p[4]), rps=rps, damp=damp))
+    elif kind == "REVOLUTE":
+        deck.add(ConstrainedJoint(kind=kind, n1=int(g[1]), n2=int(p[4]), n3=int(g[2]),
+                                  n4=int(p[7]), rps=rps, damp=damp))
+    else:
+        raise ValueError(kind)
+    deck.add(ControlTermination(endtim=end))
+    return deck
+
+
+class Gravity:
+    """Test-only force term: acceleration ``g`` (3,) mm/ms^2 on every free rigid body
+    (its resultant through the centre of mass); ``external_work`` J."""
+
+    def __init__(self, g) -> None:  # noqa: ANN001
+        self.g = np.asarray(g, float)
+        self.external_work = 0.0
+
+    def add_forces(self, state, dt: float):  # noqa: ANN001, ANN201
+        return np.inf, -1, -1
+
+    def after_gather(self, state, bodies, dt: float) -> None:  # noqa: ANN001
+        for b in bodies:
+            if not np.all(b.fixed_trans):
+                b.force = b.force + b.mass * self.g
+
+
+class Driver:
+    """A model stepped directly (no output files): ``run_to(t)`` advances the State."""
+
+    def __init__(self, deck: Deck, gravity=None) -> None:  # noqa: ANN001
+        self.model = build_model(deck)
+        self.plan = assemble(self.model)
+        if gravity is not None:
+            self.gravity = Gravity(gravity)
+            self.plan.terms.insert(0, self.gravity)
+        self.state = init_state(self.model, self.plan)
+        start(self.model, self.plan, self.state)
+        self.joint = next(t for t in self.plan.terms if hasattr(t, "joints"))
+
+    def step(self) -> None:
+        step(self.model, self.plan, self.state, self.state.dt_next)
+
+    def run_to(self, t_end: float, every=None) -> None:  # noqa: ANN001
+        """Step until t >= t_end; ``every(driver)`` after each cycle."""
+        while self.state.t < t_end:
+            self.step()
+            if every is not None:
+                every(self)
+
+    def body(self, pid: int):  # noqa: ANN201
+        return next(b for b in self.plan.bodies if b.pid == pid)
