@@ -122,3 +122,22 @@ def axes_from_points(o: np.ndarray, a: np.ndarray, p: np.ndarray, axis: int = 0)
     e[k] = n / nn
     e[j] = np.cross(e[k], e[i])
     return np.array(e)
+
+
+def joint_summary(model) -> dict[str, list[dict]]:  # noqa: ANN001 - Model
+    """For ``hollowbody check``: {"joints": [{jid, type, nodes, parts}], "joint_stiffness":
+    [{jsid, type, parts, cid, jid}]}; ``parts``: the rigid parts (PIDA, PIDB) of the
+    joint's nodes N1 and N2 (None: on no *MAT_RIGID part)."""
+    from hollowbody.model.mass import part_nodes
+
+    owner = np.full(model.n_nodes, -1, dtype=np.int64)
+    for pid in model.rigid_pids():
+        owner[part_nodes(model, pid)] = pid
+    joints = []
+    for j in model.joints:
+        pids = [int(owner[n]) if owner[n] >= 0 else None for n in j.nodes[:2]]
+        joints.append({"jid": j.jid, "type": j.kind,
+                       "nodes": [int(model.node_ids[n]) for n in j.nodes], "parts": pids})
+    stiff = [{"jsid": s.jsid, "type": s.kind, "parts": [s.pida, s.pidb],
+              "cid": [s.cida, s.cidb], "jid": s.jid} for s in model.joint_stiffness]
+    return {"joints": joints, "joint_stiffness": stiff}

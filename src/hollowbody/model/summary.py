@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hollowbody.model.joints import joint_summary
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas
 from hollowbody.model.model import Model
 
@@ -173,6 +174,7 @@ def summarize(model: Model) -> dict:
         "end_time": model.controls.end_time,
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),
+        **joint_summary(model),
         "unsupported": unsupported_entries(model),
     }
     summary["problems"] = problems(model, summary)

@@ -321,3 +321,32 @@ class JointTerm:
         if self.uj.size:
             np.add.at(moment, self.uj, self.um_out)
         return force, moment
+
+    #: columns of jntforc.csv (:mod:`hollowbody.solver.outputs`)
+    JNTFORC_COLUMNS = ("time [ms]", "joint", "jsid", "fx [kN]", "fy [kN]", "fz [kN]",
+                       "f [kN]", "mx [kN*mm]", "my [kN*mm]", "mz [kN*mm]", "m [kN*mm]",
+                       "angle1 [rad]", "angle2 [rad]", "angle3 [rad]", "moment1 [kN*mm]",
+                       "moment2 [kN*mm]", "moment3 [kN*mm]")
+
+    def jntforc_rows(self, t: float, x: np.ndarray) -> list[list[float]]:
+        """Rows of jntforc.csv at time t (ms): one per joint (force and moment on body
+        B; with the angles and generalized moments of the stiffness whose JID names
+        it), then one per stiffness that names no joint (joint 0). Angles: phi,
+        theta, psi (GENERALIZED) or alpha, gamma, beta (FLEXION-TORSION)."""
+        force, moment = self.joint_resultants(x)
+        by_jid = {st.jid: i for i, st in enumerate(self.stiffnesses) if st.jid}
+        nan3 = [np.nan] * 3
+        rows = []
+        for j, jt in enumerate(self.joints):
+            s = by_jid.get(jt.jid)
+            extra = ([self.stiffnesses[s].jsid, *self.q_out[s], *self.m_out[s]]
+                     if s is not None else [0, *nan3, *nan3])
+            rows.append([t, jt.jid, extra[0], *force[j], float(np.linalg.norm(force[j])),
+                         *moment[j], float(np.linalg.norm(moment[j])), *extra[1:]])
+        jids = {jt.jid for jt in self.joints}
+        for s, st in enumerate(self.stiffnesses):
+            if st.jid not in jids:
+                mb = self.mb_out[s]
+                rows.append([t, 0, st.jsid, 0.0, 0.0, 0.0, 0.0, *mb,
+                             float(np.linalg.norm(mb)), *self.q_out[s], *self.m_out[s]])
+        return rows

@@ -6,6 +6,7 @@
 - ``rbdout.csv``  rigid-body displacement, velocity and resultant force;
 - ``spcforc.csv`` total SPC reaction force;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
+- ``jntforc.csv`` joint forces and moments, joint stiffness angles and moments;
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
 - ``messages.log`` the run log; ``summary.json`` how the run ended.
 
@@ -30,6 +31,7 @@ from hollowbody.errors import UserInputError
 from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
 from hollowbody.solver.energies import energies, node_velocity_full_step
+from hollowbody.solver.joints import JointTerm
 from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
 DEFAULT_HISTORY_COUNT = 500
@@ -138,7 +140,7 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         f.unlink()
 
 
-HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum")
+HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "jntforc")
 
 
 class RunOutputs:
@@ -161,7 +163,8 @@ class RunOutputs:
         req = model.output.intervals
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
-                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout")}
+                       for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout",
+                                     "jntforc")}
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
@@ -183,6 +186,9 @@ class RunOutputs:
         self.matsum = HistoryWriter(self.out / "matsum.csv", [
             "time [ms]", "part", "kinetic [J]", "internal [J]", "hourglass [J]"],
             pos.get("matsum"))
+        self.joint_term = next((t for t in asm.terms if isinstance(t, JointTerm)), None)
+        self.jntforc = HistoryWriter(self.out / "jntforc.csv", list(JointTerm.JNTFORC_COLUMNS),
+                                     pos.get("jntforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
         if resume is not None:
@@ -247,6 +253,9 @@ class RunOutputs:
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
         if self.clocks["matsum"].due(t) or force:
             self._write_matsum(state)
+        if (self.clocks["jntforc"].due(t) or force) and self.joint_term is not None:
+            for row in self.joint_term.jntforc_rows(t, state.x):
+                self.jntforc.write(row)
         if self.vtk is not None and (self.state_clock.due(t) or force):
             self.write_state(state)
 
