@@ -45,6 +45,7 @@ class Curve:
 #: via ``Model.curves``.
 MATERIAL_PARAMS = {
     "elastic": ("E", "PR"),  # *MAT_ELASTIC (001)
+    "null": ("PC", "MU", "TEROD", "CEROD", "YM", "PR"),  # *MAT_NULL (009): shells only
     "rigid": ("E", "PR", "CMO", "CON1", "CON2"),  # *MAT_RIGID (020)
     "rubber181": ("KM", "MU", "G", "SIGF", "REF", "SGL", "SW", "ST", "LCID"),  # 181
     "plastic003": ("E", "PR", "SIGY", "ETAN", "BETA", "SRC", "SRP"),  # 003

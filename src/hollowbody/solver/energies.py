@@ -11,7 +11,10 @@ import numpy as np
 
 
 def _half_next(state) -> float:  # noqa: ANN001 - State
-    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set)."""
+    """dt^{n+1} / 2 for the full-step velocity estimates (0 when no step is set, and
+    at cycle 0, where the State's velocities are the initial ones, not v^{-1/2})."""
+    if state.cycle == 0:
+        return 0.0
     return 0.5 * state.dt_next if np.isfinite(state.dt_next) else 0.0
 
 
@@ -32,7 +35,19 @@ def kinetic_energy(plan, state) -> float:  # noqa: ANN001
     if plan.has_rotations:
         w = state.w + _half_next(state) * state.mom * state.inv_i[:, None]
         ke += 0.5 * float((state.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
-    return ke + sum(b.kinetic_energy() for b in plan.bodies)
+    half = _half_next(state)
+    return ke + sum(rigid_kinetic_energy(b, half) for b in plan.bodies)
+
+
+def rigid_kinetic_energy(body, half: float) -> float:  # noqa: ANN001 - RigidBody
+    """Kinetic energy (J) of a rigid body at the full step, as for the nodes:
+    V^{n+1/2} + dt/2 F^{n+1} / M (constrained and prescribed components unchanged),
+    rotation at the half step (``half`` = dt^{n+1} / 2 ms)."""
+    acc = body.force / body.mass if body.mass > 0.0 else np.zeros(3)
+    acc = np.where(body.fixed_trans | body.prescribed_trans, 0.0, acc)
+    vel = body.vel + half * acc
+    return 0.5 * body.mass * float(vel @ vel) + \
+        0.5 * float(body.omega @ body.inertia() @ body.omega)
 
 
 def energies(plan, state) -> dict[str, float]:  # noqa: ANN001

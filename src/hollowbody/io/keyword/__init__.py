@@ -9,6 +9,14 @@ See ``docs/keyword.md`` for the supported keywords and the deck-building API.
 
 from hollowbody.io.keyword.base import KeywordItem, RawKeyword, SimpleKeyword, Title
 from hollowbody.io.keyword.deck import Deck, Include
+from hollowbody.io.keyword.kw_body_loads import (
+    LoadBody,
+    LoadBodyParts,
+    LoadNodePoint,
+    LoadNodeSet,
+    LoadRigidBody,
+    RigidwallPlanar,
+)
 from hollowbody.io.keyword.kw_contact import (
     CONTACT_TYPES,
     TIED_OFFSETS,
@@ -51,6 +59,7 @@ from hollowbody.io.keyword.kw_loads import (
 from hollowbody.io.keyword.kw_materials import (
     MatElastic,
     Material,
+    MatNull,
     MatPiecewiseLinearPlasticity,
     MatPlasticKinematic,
     MatRigid,
@@ -81,7 +90,9 @@ __all__ = [
     "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
     "DatabaseHistoryNodeSet",
     "Deck", "DefineCurve", "Hourglass", "Include", "InitialVelocity",
-    "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
+    "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "LoadBody",
+    "LoadBodyParts", "LoadNodePoint", "LoadNodeSet", "LoadRigidBody", "MassElements", "MatNull",
+    "RigidwallPlanar",
     "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
     "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartialRead", "PartInertia",
     "PrescribedMotionKeyword", "PrescribedMotionNode",

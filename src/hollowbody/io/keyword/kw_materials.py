@@ -1,5 +1,5 @@
 """Material keywords: *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003),
-*MAT_RIGID (020), *MAT_PIECEWISE_LINEAR_PLASTICITY (024),
+*MAT_NULL (009), *MAT_RIGID (020), *MAT_PIECEWISE_LINEAR_PLASTICITY (024),
 *MAT_SIMPLIFIED_RUBBER (181).
 
 Deck units: density kg/mm^3, moduli and stresses GPa. Each material is one
@@ -181,3 +181,26 @@ class MatSimplifiedRubber(Material):
 #: All material keyword classes (for the builder).
 MATERIALS: tuple[type[Material], ...] = (MatElastic, MatPlasticKinematic, MatRigid,
                                          MatPiecewiseLinearPlasticity, MatSimplifiedRubber)
+
+
+@register
+@dataclass(kw_only=True)
+class MatNull(Material):
+    """*MAT_NULL / *MAT_009: MID RO PC MU TEROD CEROD YM PR.
+
+    Shells of this material have mass and no stiffness (contact surfaces);
+    YM, PR set their contact stiffness. Solids need an equation of state (not
+    supported).
+    """
+
+    pc: float = 0.0
+    mu: float = 0.0
+    terod: float = 0.0
+    cerod: float = 0.0
+    ym: float = 0.0
+    pr: float = 0.0
+
+    KEYWORD: ClassVar[str] = "MAT_NULL"
+    ALIASES: ClassVar[tuple[str, ...]] = ("MAT_009",)
+    CARDS: ClassVar[tuple[str, ...]] = ("mid ro pc mu terod cerod ym pr",)
+    KIND: ClassVar[str] = "null"
