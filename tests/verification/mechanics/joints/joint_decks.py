@@ -3,9 +3,8 @@
 Every body is one rigid hexahedron (its elements only carry the nodes and set the
 run's step through *MAT_RIGID's E, PR and density); its mass properties come from
 *PART_INERTIA, so the analytical values use exactly the mass, centre and inertia
-the solver uses. Gravity is a test-only force term (:class:`Gravity`) acting on
-the rigid bodies as a whole, scaled (``g`` argument) so that a pendulum period
-takes a few thousand cycles instead of millions.
+the solver uses. Gravity is *LOAD_BODY_Z, scaled (``g`` argument) so that a
+pendulum period takes about a thousand cycles instead of millions.
 """
 
 from __future__ import annotations
@@ -17,11 +16,14 @@ from hollowbody.io.keyword import (
     ConstrainedJoint,
     ControlTermination,
     Deck,
+    DefineCurve,
+    LoadBody,
     MatRigid,
     Part,
     PartInertia,
     SectionSolid,
 )
+from hollowbody.solver.energies import energies, kinetic_energy
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import init_state
 from hollowbody.solver.step import start, step
@@ -64,20 +66,27 @@ def add_body(deck: Deck, pid: int, corner, *, fixed: bool = False,  # noqa: ANN0
     return ids
 
 
+def gravity(deck: Deck, g: float) -> None:
+    """Gravity g (mm/ms^2) in -z: *LOAD_BODY_Z SF = g on a constant curve 1."""
+    deck.add(DefineCurve(lcid=1, points=[[0.0, 1.0], [1.0e6, 1.0]]))
+    deck.add(LoadBody(axis="Z", lcid=1, sf=g))
+
+
 def pendulum(kind: str = "SPHERICAL", theta0: float = 5.0, d: float = 100.0,
              radius_gyration: float = 30.0, mass: float = 1.0, end: float = 1.0,
-             rps: float = 1.0, damp: float = 1.0) -> Deck:
+             rps: float = 1.0, damp: float = 1.0, g: float | None = None) -> Deck:
     """A ground body (fixed, part 1) and a pendulum (part 2) on a joint at the origin.
 
     The pendulum's centre of mass is at distance d (mm) from the joint, at angle
     theta0 (degrees) from the downward vertical in the x-z plane; its inertia is
-    isotropic (radius of gyration in mm). SPHERICAL: N1 = node 101 (ground, at the
-    origin), N2 = node 201 (pendulum, at the origin); REVOLUTE adds the pair on the
-    y axis (ground node 104 and pendulum node 204 at (0, 10, 0)).
+    isotropic (radius of gyration in mm); gravity g (mm/ms^2) in -z when given.
+    SPHERICAL: N1 = node 102 (ground, at the origin), N2 = node 205 (pendulum, at
+    the origin); REVOLUTE adds the pair on the y axis (ground node 103 and pendulum
+    node 208 at (0, 10, 0)).
     """
     deck = Deck()
     deck.title = f"{kind.lower()} pendulum"
-    g = add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
+    gr = add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
     # ground cube [-10,0]x[0,10]x[0,10]: its node 2 is the origin, node 3 (0, 10, 0)
     th = np.radians(theta0)
     centre = (d * np.sin(th), 0.0, -d * np.cos(th))
@@ -85,44 +94,27 @@ def pendulum(kind: str = "SPHERICAL", theta0: float = 5.0, d: float = 100.0,
     p = add_body(deck, 2, (0.0, 0.0, -10.0), mass=mass, centre=centre, inertia=(i, i, i))
     # pendulum cube [0,10]x[0,10]x[-10,0]: node 5 is the origin, node 8 (0, 10, 0)
     if kind == "SPHERICAL":
-        deck.add(ConstrainedJoint(kind=kind, n1=int(g[1]), n2=int(p[4]), rps=rps, damp=damp))
+        deck.add(ConstrainedJoint(kind=kind, n1=int(gr[1]), n2=int(p[4]), rps=rps, damp=damp))
     elif kind == "REVOLUTE":
-        deck.add(ConstrainedJoint(kind=kind, n1=int(g[1]), n2=int(p[4]), n3=int(g[2]),
+        deck.add(ConstrainedJoint(kind=kind, n1=int(gr[1]), n2=int(p[4]), n3=int(gr[2]),
                                   n4=int(p[7]), rps=rps, damp=damp))
     else:
         raise ValueError(kind)
     deck.add(ControlTermination(endtim=end))
+    if g is not None:
+        gravity(deck, g)
     return deck
-
-
-class Gravity:
-    """Test-only force term: acceleration ``g`` (3,) mm/ms^2 on every free rigid body
-    (its resultant through the centre of mass); ``external_work`` J."""
-
-    def __init__(self, g) -> None:  # noqa: ANN001
-        self.g = np.asarray(g, float)
-        self.external_work = 0.0
-
-    def add_forces(self, state, dt: float):  # noqa: ANN001, ANN201
-        return np.inf, -1, -1
-
-    def after_gather(self, state, bodies, dt: float) -> None:  # noqa: ANN001
-        for b in bodies:
-            if not np.all(b.fixed_trans):
-                b.force = b.force + b.mass * self.g
 
 
 class Driver:
     """A model stepped directly (no output files): ``run_to(t)`` advances the State."""
 
-    def __init__(self, deck: Deck, gravity=None) -> None:  # noqa: ANN001
+    def __init__(self, deck: Deck) -> None:
         self.model = build_model(deck)
         self.plan = assemble(self.model)
-        if gravity is not None:
-            self.gravity = Gravity(gravity)
-            self.plan.terms.insert(0, self.gravity)
         self.state = init_state(self.model, self.plan)
         start(self.model, self.plan, self.state)
+        self.state.e0 = kinetic_energy(self.plan, self.state)
         self.joint = next(t for t in self.plan.terms if hasattr(t, "joints"))
 
     def step(self) -> None:
@@ -134,6 +126,9 @@ class Driver:
             self.step()
             if every is not None:
                 every(self)
+
+    def energies(self) -> dict[str, float]:
+        return energies(self.plan, self.state)
 
     def body(self, pid: int):  # noqa: ANN201
         return next(b for b in self.plan.bodies if b.pid == pid)
