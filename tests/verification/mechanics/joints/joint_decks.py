@@ -132,3 +132,36 @@ class Driver:
 
     def body(self, pid: int):  # noqa: ANN201
         return next(b for b in self.plan.bodies if b.pid == pid)
+
+
+#: Nodes of the two-cube layout of :func:`joint_pair`: ground cube [-10,0]x[0,10]x[0,10]
+#: (part 1, fixed) and body cube [0,10]^3 (part 2) share the face x = 0.
+PAIR_NODES = {
+    "SPHERICAL": (102, 201),
+    "REVOLUTE": (102, 201, 103, 204),
+    "CYLINDRICAL": (102, 201, 103, 204),
+    "UNIVERSAL": (102, 201, 103, 205),
+    "TRANSLATIONAL": (102, 201, 103, 204, 106, 205),
+    "LOCKING": (102, 201, 103, 204, 106, 205),
+}
+#: Centre of mass of body 2 in :func:`joint_pair`: on the joint's axis (y) or point.
+PAIR_CENTRE = {"SPHERICAL": (0.0, 0.0, 0.0), "UNIVERSAL": (0.0, 0.0, 0.0),
+               "REVOLUTE": (0.0, 5.0, 0.0), "CYLINDRICAL": (0.0, 5.0, 0.0),
+               "TRANSLATIONAL": (0.0, 5.0, 5.0), "LOCKING": (0.0, 5.0, 5.0)}
+
+
+def joint_pair(kind: str, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0), end: float = 1.0,  # noqa: ANN001
+               mass: float = 1.0, inertia: float = 100.0) -> Deck:
+    """A fixed ground cube (part 1) and a free cube (part 2, isotropic inertia in
+    kg*mm^2, centre :data:`PAIR_CENTRE`) on a joint of type ``kind`` whose axis is
+    the global y axis (N1 = origin, N3 = (0, 10, 0)); N5 = (0, 0, 10); the universal
+    joint's arms are y (ground) and z (body). Initial velocity v0 / w0 of body 2."""
+    deck = Deck()
+    deck.title = f"{kind.lower()} joint"
+    add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
+    add_body(deck, 2, (0.0, 0.0, 0.0), mass=mass, centre=PAIR_CENTRE[kind],
+             inertia=(inertia, inertia, inertia), v0=v0, w0=w0)
+    nodes = dict(zip(("n1", "n2", "n3", "n4", "n5", "n6"), PAIR_NODES[kind]))
+    deck.add(ConstrainedJoint(kind=kind, **nodes))
+    deck.add(ControlTermination(endtim=end))
+    return deck
