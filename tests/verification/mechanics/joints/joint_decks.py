@@ -15,6 +15,10 @@ from hollowbody.build import build_model
 from hollowbody.io.keyword import (
     ConstrainedJoint,
     ControlTermination,
+    DefineCoordinateSystem,
+    JointStiffnessFlexionTorsion,
+    JointStiffnessGeneralized,
+    LoadRigidBody,
     Deck,
     DefineCurve,
     LoadBody,
@@ -44,11 +48,13 @@ def hexa(corner: np.ndarray, size: float = 10.0) -> np.ndarray:
 
 def add_body(deck: Deck, pid: int, corner, *, fixed: bool = False,  # noqa: ANN001
              mass: float = 1.0, centre=(0.0, 0.0, 0.0), inertia=(1.0, 1.0, 1.0),
-             size: float = 10.0, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0)) -> np.ndarray:
+             size: float = 10.0, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0),
+             products=(0.0, 0.0, 0.0)) -> np.ndarray:
     """One rigid hexahedron body, part ``pid`` (nodes 100 pid + 1..8, element pid);
     returns its node ids. ``fixed``: all 6 DOFs fixed (CMO = 1, CON1 = CON2 = 7);
     otherwise *PART_INERTIA mass (kg), centre (mm), principal inertia (kg*mm^2) about
-    global axes, initial velocity v0 (mm/ms) and angular velocity w0 (rad/ms)."""
+    global axes (with ``products`` IXY, IXZ, IYZ), initial velocity v0 (mm/ms) and
+    angular velocity w0 (rad/ms)."""
     ids = 100 * pid + np.arange(1, 9)
     deck.add_nodes(ids, hexa(corner, size))
     deck.add_solids(np.array([pid]), pid, ids[None, :])
@@ -62,6 +68,7 @@ def add_body(deck: Deck, pid: int, corner, *, fixed: bool = False,  # noqa: ANN0
         deck.add(PartInertia(pid=pid, secid=1, mid=pid, title=f"body {pid}",
                              xc=centre[0], yc=centre[1], zc=centre[2], tm=mass,
                              ixx=inertia[0], iyy=inertia[1], izz=inertia[2],
+                             ixy=products[0], ixz=products[1], iyz=products[2],
                              vtx=v0[0], vty=v0[1], vtz=v0[2], vrx=w0[0], vry=w0[1], vrz=w0[2]))
     return ids
 
@@ -151,7 +158,7 @@ PAIR_CENTRE = {"SPHERICAL": (0.0, 0.0, 0.0), "UNIVERSAL": (0.0, 0.0, 0.0),
 
 
 def joint_pair(kind: str, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0), end: float = 1.0,  # noqa: ANN001
-               mass: float = 1.0, inertia: float = 100.0) -> Deck:
+               mass: float = 1.0, inertia: float = 100.0, products=(0.0, 0.0, 0.0)) -> Deck:
     """A fixed ground cube (part 1) and a free cube (part 2, isotropic inertia in
     kg*mm^2, centre :data:`PAIR_CENTRE`) on a joint of type ``kind`` whose axis is
     the global y axis (N1 = origin, N3 = (0, 10, 0)); N5 = (0, 0, 10); the universal
@@ -160,8 +167,33 @@ def joint_pair(kind: str, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0), end: float = 1
     deck.title = f"{kind.lower()} joint"
     add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
     add_body(deck, 2, (0.0, 0.0, 0.0), mass=mass, centre=PAIR_CENTRE[kind],
-             inertia=(inertia, inertia, inertia), v0=v0, w0=w0)
+             inertia=(inertia, inertia, inertia), v0=v0, w0=w0, products=products)
     nodes = dict(zip(("n1", "n2", "n3", "n4", "n5", "n6"), PAIR_NODES[kind]))
     deck.add(ConstrainedJoint(kind=kind, **nodes))
     deck.add(ControlTermination(endtim=end))
+    return deck
+
+
+def curve(deck: Deck, lcid: int, f, lo: float = -1.5, hi: float = 1.5,  # noqa: ANN001
+          n: int = 121) -> np.ndarray:
+    """*DEFINE_CURVE ``lcid`` sampling f on [lo, hi] (n points); returns the points."""
+    x = np.linspace(lo, hi, n)
+    pts = np.column_stack([x, [f(v) for v in x]])
+    deck.add(DefineCurve(lcid=lcid, points=pts.tolist()))
+    return pts
+
+
+def stiffness_pair(kind: str = "GENERALIZED", dof: int = 5, moment=(), inertia: float = 10.0,
+                   end: float = 100.0, **cards) -> Deck:  # noqa: ANN001, ANN003
+    """Spherical joint of :func:`joint_pair` (centre of body 2 at the pivot, isotropic
+    inertia) with a joint stiffness between parts 1 and 2 in the global system
+    (CID 1 for both bodies; ``cards`` are its fields) and a moment about global
+    axis DOF 5 / 6 / 7 (x / y / z) on body 2: *LOAD_RIGID_BODY on curve 90 with the
+    points ``moment`` ((t ms, kN*mm) pairs)."""
+    deck = joint_pair("SPHERICAL", end=end, inertia=inertia)
+    deck.add(DefineCoordinateSystem(cid=1, xl=1.0, yp=1.0))
+    cls = JointStiffnessGeneralized if kind == "GENERALIZED" else JointStiffnessFlexionTorsion
+    deck.add(cls(jsid=1, pida=1, pidb=2, cida=1, jid=1, **cards))
+    deck.add(DefineCurve(lcid=90, points=[list(p) for p in moment]))
+    deck.add(LoadRigidBody(pid=2, dof=dof, lcid=90, sf=1.0))
     return deck
