@@ -138,24 +138,34 @@ def _interp(cx, cy, start, idx, t):  # noqa: ANN001
 
 
 @njit(cache=True)
-def _frame(x, rot, body, e0, nodes, axis, follow, out):  # noqa: ANN001
-    """Rows of ``out`` (3, 3) = current unit axes: rebuilt from nodes (follow) or the
-    t = 0 axes e0 (3, 3) rotated with the body's rotation rot[body]."""
-    if follow:
-        i, j, k = axis, (axis + 1) % 3, (axis + 2) % 3
-        a = x[nodes[1]] - x[nodes[0]]
-        w = x[nodes[2]] - x[nodes[0]]
-        a = a / np.sqrt(a @ a)
-        n = np.cross(a, w)
-        n = n / np.sqrt(n @ n)
-        out[i] = a
-        out[k] = n
-        out[j] = np.cross(n, a)
-    else:
-        r = rot[body]
+def _frame(x, nodes, axis, c, out):  # noqa: ANN001
+    """Rows of ``out`` (3, 3) = c (3, 3) @ the unit axes built from three nodes:
+    axis ``axis`` along nodes[0] -> nodes[1], nodes[2] in the plane of that axis and
+    the next one (the *DEFINE_COORDINATE_NODES construction). No allocation."""
+    i, j, k = axis, (axis + 1) % 3, (axis + 2) % 3
+    a0 = x[nodes[1], 0] - x[nodes[0], 0]
+    a1 = x[nodes[1], 1] - x[nodes[0], 1]
+    a2 = x[nodes[1], 2] - x[nodes[0], 2]
+    w0 = x[nodes[2], 0] - x[nodes[0], 0]
+    w1 = x[nodes[2], 1] - x[nodes[0], 1]
+    w2 = x[nodes[2], 2] - x[nodes[0], 2]
+    na = np.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+    a0, a1, a2 = a0 / na, a1 / na, a2 / na
+    n0 = a1 * w2 - a2 * w1
+    n1 = a2 * w0 - a0 * w2
+    n2 = a0 * w1 - a1 * w0
+    nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    n0, n1, n2 = n0 / nn, n1 / nn, n2 / nn
+    f = out  # the node frame first, then c @ f in place
+    f[i, 0], f[i, 1], f[i, 2] = a0, a1, a2
+    f[k, 0], f[k, 1], f[k, 2] = n0, n1, n2
+    f[j, 0] = n1 * a2 - n2 * a1
+    f[j, 1] = n2 * a0 - n0 * a2
+    f[j, 2] = n0 * a1 - n1 * a0
+    for q in range(3):  # out = c @ f, column by column (f's column q read first)
+        f0, f1, f2 = f[0, q], f[1, q], f[2, q]
         for p in range(3):
-            for q in range(3):
-                out[p, q] = r[q, 0] * e0[p, 0] + r[q, 1] * e0[p, 1] + r[q, 2] * e0[p, 2]
+            out[p, q] = c[p, 0] * f0 + c[p, 1] * f1 + c[p, 2] * f2
 
 
 @njit(cache=True)
@@ -165,78 +175,93 @@ def _wrap(a):  # noqa: ANN001
 
 
 @njit(cache=True)
-def stiffness_moments(x, mom, rot, omega, kind, ba, bb, na, nb,  # noqa: ANN001, PLR0913
-                      ea0, eb0, fa_nodes, fa_axis, fa_follow, fb_nodes, fb_axis, fb_follow,
-                      cx, cy, cstart, lc, dlc, lcg, es, fm, neg, pos,
-                      qp, q_prev, m_prev, q_out, m_out, mb_out):
+def _dot(a, i, b, j):  # noqa: ANN001
+    return a[i, 0] * b[j, 0] + a[i, 1] * b[j, 1] + a[i, 2] * b[j, 2]
+
+
+@njit(cache=True)
+def _cross_rows(a, i, b, j, out, k, scale):  # noqa: ANN001
+    """out[k] = scale * (a[i] x b[j])."""
+    out[k, 0] = scale * (a[i, 1] * b[j, 2] - a[i, 2] * b[j, 1])
+    out[k, 1] = scale * (a[i, 2] * b[j, 0] - a[i, 0] * b[j, 2])
+    out[k, 2] = scale * (a[i, 0] * b[j, 1] - a[i, 1] * b[j, 0])
+
+
+@njit(cache=True)
+def stiffness_moments(x, mom, dt, kind, na, nb, fa_nodes, fa_axis, fa_c,  # noqa: ANN001
+                      fb_nodes, fb_axis, fb_c, cx, cy, cstart, lc, dlc, lcg, es, fm, neg,
+                      pos, qp, q_prev, m_prev, q_out, m_out, mb_out):
     """Joint stiffness moments of S stiffnesses; returns the work increment (J).
 
-    rot (nb, 3, 3), omega (nb, 3) rad/ms: the bodies' rotations and angular
-    velocities; kind (S,) GENERALIZED / FLEXION_TORSION; ba, bb (S,) body indices;
-    na, nb (S,) nodes of A / B that receive the moments (kN*mm, added to mom);
-    ea0, eb0 (S, 3, 3) axes (rows) of CIDA / CIDB at t = 0; f*_nodes (S, 3),
-    f*_axis (S,), f*_follow (S,) bool: systems by nodes that follow them; curves
-    packed in cx, cy with cstart (nc + 1,); lc, dlc (S, 3) curve indices of the
-    moment-angle and damping moment-rate curves (-1: none), lcg (S,) gamma scale
-    curve of FLEXION_TORSION; es (S, 3) kN*mm/rad, fm (S, 3) kN*mm, neg / pos
-    (S, 3) rad stop angles (nan: none). History (updated): qp (S, 3) the friction
-    springs' slip angles, q_prev / m_prev (S, 3) angles and generalized moments at
-    the previous call. Out: q_out / m_out (S, 3) angles (rad) and generalized
-    moments, mb_out (S, 3) the moment on body B (kN*mm).
+    Frames (rows = unit axes): CIDA's of body A = fa_c (S, 3, 3) @ the axes of its
+    three nodes fa_nodes (S, 3) (construction of :func:`_frame` with fa_axis (S,));
+    likewise CIDB's of body B. A body-fixed system uses three nodes of its body and
+    fa_c = its axes in their frame at t = 0; a system by nodes that follows them
+    (FLAG = 1) uses its own nodes and fa_c = I. kind (S,) GENERALIZED /
+    FLEXION_TORSION; na, nb (S,) nodes of A / B that receive the moments (kN*mm,
+    added to mom); dt (ms) the step just taken (angle rates = angle change / dt; 0
+    at the start); curves packed in cx, cy with cstart (nc + 1,); lc, dlc (S, 3)
+    moment-angle and damping moment-rate curves (-1: none); lcg (S,) gamma scale
+    curve (FLEXION_TORSION); es (S, 3) kN*mm/rad, fm (S, 3) kN*mm, neg / pos (S, 3)
+    rad stops (nan: none). History (updated): qp (S, 3) the friction springs' slip
+    angles, q_prev / m_prev (S, 3) the angles and generalized moments at the previous
+    call. Out: q_out / m_out (S, 3) angles (rad) and generalized moments, mb_out
+    (S, 3) the moment on body B (kN*mm). No allocation inside the loop.
     """
     work = 0.0
     ea = np.empty((3, 3))
     eb = np.empty((3, 3))
+    ax = np.empty((3, 3))
     dual = np.empty((3, 3))
     q = np.empty(3)
     for s in range(kind.shape[0]):
-        _frame(x, rot, ba[s], ea0[s], fa_nodes[s], fa_axis[s], fa_follow[s], ea)
-        _frame(x, rot, bb[s], eb0[s], fb_nodes[s], fb_axis[s], fb_follow[s], eb)
-        w = omega[bb[s]] - omega[ba[s]]
+        _frame(x, fa_nodes[s], fa_axis[s], fa_c[s], ea)
+        _frame(x, fb_nodes[s], fb_axis[s], fb_c[s], eb)
         scale = 1.0
         if kind[s] == GENERALIZED:
-            r02 = ea[0] @ eb[2]
-            r12 = ea[1] @ eb[2]
-            r22 = ea[2] @ eb[2]
-            r01 = ea[0] @ eb[1]
-            r00 = ea[0] @ eb[0]
-            phi = np.arctan2(-r12, r22)
+            r02 = _dot(ea, 0, eb, 2)
+            phi = np.arctan2(-_dot(ea, 1, eb, 2), _dot(ea, 2, eb, 2))
             q[0] = phi
             q[1] = np.arcsin(min(1.0, max(-1.0, r02)))
-            q[2] = np.arctan2(-r01, r00)
-            a1 = ea[0].copy()
-            a2 = np.cos(phi) * ea[1] + np.sin(phi) * ea[2]
-            a3 = eb[2].copy()
-            det = a1 @ np.cross(a2, a3)
+            q[2] = np.arctan2(-_dot(ea, 0, eb, 1), _dot(ea, 0, eb, 0))
+            cp, sp = np.cos(phi), np.sin(phi)
+            for c3 in range(3):  # axes: a1 = x_A, a2 = y after phi, a3 = z_B
+                ax[0, c3] = ea[0, c3]
+                ax[1, c3] = cp * ea[1, c3] + sp * ea[2, c3]
+                ax[2, c3] = eb[2, c3]
+            _cross_rows(ax, 1, ax, 2, dual, 0, 1.0)
+            det = _dot(ax, 0, dual, 0)
             if abs(det) < 1e-6:
                 det = 1e-6 if det >= 0.0 else -1e-6
-            dual[0] = np.cross(a2, a3) / det
-            dual[1] = np.cross(a3, a1) / det
-            dual[2] = np.cross(a1, a2) / det
+            _cross_rows(ax, 1, ax, 2, dual, 0, 1.0 / det)
+            _cross_rows(ax, 2, ax, 0, dual, 1, 1.0 / det)
+            _cross_rows(ax, 0, ax, 1, dual, 2, 1.0 / det)
         else:
-            c = min(1.0, max(-1.0, ea[2] @ eb[2]))
+            c = min(1.0, max(-1.0, _dot(ea, 2, eb, 2)))
             q[0] = np.arccos(c)
-            n = np.cross(ea[2], eb[2])
-            sn = np.sqrt(n @ n)
+            _cross_rows(ea, 2, eb, 2, dual, 0, 1.0)
+            sn = np.sqrt(_dot(dual, 0, dual, 0))
             gamma = 0.0
             if sn > 1e-12:
-                n = n / sn
-                gamma = np.arctan2(eb[2] @ ea[1], eb[2] @ ea[0])
+                for c3 in range(3):
+                    dual[0, c3] /= sn
+                gamma = np.arctan2(_dot(eb, 2, ea, 1), _dot(eb, 2, ea, 0))
             else:
-                n[:] = 0.0
+                dual[0, 0] = dual[0, 1] = dual[0, 2] = 0.0
             q[1] = gamma
             # twist: 2 atan2(qz, qw) of the relative rotation's quaternion (qw >= 0)
-            tr = ea[0] @ eb[0] + ea[1] @ eb[1] + ea[2] @ eb[2]
-            q[2] = 2.0 * np.arctan2(ea[1] @ eb[0] - ea[0] @ eb[1], 1.0 + tr)
-            dual[0] = n
-            dual[1] = 0.0
-            dual[2] = (ea[2] + eb[2]) / max(1.0 + c, 1e-6)
+            tr = _dot(ea, 0, eb, 0) + _dot(ea, 1, eb, 1) + _dot(ea, 2, eb, 2)
+            q[2] = 2.0 * np.arctan2(_dot(ea, 1, eb, 0) - _dot(ea, 0, eb, 1), 1.0 + tr)
+            inv = 1.0 / max(1.0 + c, 1e-6)
+            for c3 in range(3):
+                dual[1, c3] = 0.0
+                dual[2, c3] = (ea[2, c3] + eb[2, c3]) * inv
             if lcg[s] >= 0:
                 scale = _interp(cx, cy, cstart, lcg[s], gamma)
-        work_s = 0.0
-        mb = np.zeros(3)
+        mb0 = mb1 = mb2 = 0.0
         for i in range(3):
-            rate = dual[i] @ w
+            dq = _wrap(q[i] - q_prev[s, i])
+            rate = dq / dt if dt > 0.0 else 0.0
             m = _interp(cx, cy, cstart, lc[s, i], q[i])
             m += _interp(cx, cy, cstart, dlc[s, i], rate)
             if i == 0:
@@ -253,15 +278,19 @@ def stiffness_moments(x, mom, rot, omega, kind, ba, bb, na, nb,  # noqa: ANN001,
                     m += k * (q[i] - pos[s, i])
                 if q[i] < neg[s, i]:
                     m += k * (q[i] - neg[s, i])
-            work_s += 0.5 * (m + m_prev[s, i]) * _wrap(q[i] - q_prev[s, i])
+            work += 0.5 * (m + m_prev[s, i]) * dq
             q_prev[s, i] = q[i]
             m_prev[s, i] = m
             q_out[s, i] = q[i]
             m_out[s, i] = m
-            mb -= m * dual[i]
-        work += work_s
-        for j in range(3):
-            mom[nb[s], j] += mb[j]
-            mom[na[s], j] -= mb[j]
-            mb_out[s, j] = mb[j]
+            mb0 -= m * dual[i, 0]
+            mb1 -= m * dual[i, 1]
+            mb2 -= m * dual[i, 2]
+        mom[nb[s], 0] += mb0
+        mom[nb[s], 1] += mb1
+        mom[nb[s], 2] += mb2
+        mom[na[s], 0] -= mb0
+        mom[na[s], 1] -= mb1
+        mom[na[s], 2] -= mb2
+        mb_out[s, 0], mb_out[s, 1], mb_out[s, 2] = mb0, mb1, mb2
     return work

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.errors import DeckError
-from hollowbody.model.joints import JOINT_PAIRS
+from hollowbody.model.joints import JOINT_PAIRS, axes_from_points
 from hollowbody.solver.joint_kernels import (
     FLEXION_TORSION,
     GENERALIZED,
@@ -192,6 +192,7 @@ class JointTerm:
 
     def _stiffness_setup(self, model, x0: np.ndarray) -> None:  # noqa: ANN001
         by_pid = {b.pid: k for k, b in enumerate(self.bodies)}
+        self._refs: dict[int, np.ndarray] = {}
         curve_ids = sorted({int(v) for st in self.stiffnesses
                             for v in (*st.lc, *st.dlc, st.lc_gamma) if v})
         index = {lcid: i for i, lcid in enumerate(curve_ids)}
@@ -202,12 +203,10 @@ class JointTerm:
         self.cstart = np.concatenate([[0], np.cumsum([len(v) for v in xs])]).astype(np.int64)
         s = len(self.stiffnesses)
         self.kind = np.zeros(s, np.int64)
-        self.sba, self.sbb = np.zeros(s, np.int64), np.zeros(s, np.int64)
         self.sna, self.snb = np.zeros(s, np.int64), np.zeros(s, np.int64)
-        self.ea0, self.eb0 = np.zeros((s, 3, 3)), np.zeros((s, 3, 3))
         self.fa_nodes, self.fb_nodes = np.zeros((s, 3), np.int64), np.zeros((s, 3), np.int64)
         self.fa_axis, self.fb_axis = np.zeros(s, np.int64), np.zeros(s, np.int64)
-        self.fa_follow, self.fb_follow = np.zeros(s, bool), np.zeros(s, bool)
+        self.fa_c, self.fb_c = np.zeros((s, 3, 3)), np.zeros((s, 3, 3))
         self.lc = np.full((s, 3), -1, np.int64)
         self.dlc = np.full((s, 3), -1, np.int64)
         self.lcg = np.full(s, -1, np.int64)
@@ -221,16 +220,20 @@ class JointTerm:
                                  "rigid body (a *MAT_RIGID part or a nodal rigid body)")
             ba, bb = by_pid[st.pida], by_pid[st.pidb]
             self.kind[i] = GENERALIZED if st.kind == "GENERALIZED" else FLEXION_TORSION
-            self.sba[i], self.sbb[i] = ba, bb
             self.sna[i] = int(np.asarray(self.bodies[ba].nodes)[0])
             self.snb[i] = int(np.asarray(self.bodies[bb].nodes)[0])
             csa = model.coordinate_systems[st.cida]
             csb = model.coordinate_systems[st.cidb]
-            self.ea0[i], self.eb0[i] = csa.axes, csb.axes
-            if csa.follow and csa.nodes is not None:
-                self.fa_nodes[i], self.fa_axis[i], self.fa_follow[i] = csa.nodes, csa.dir, True
-            if st.cidb != st.cida and csb.follow and csb.nodes is not None:
-                self.fb_nodes[i], self.fb_axis[i], self.fb_follow[i] = csb.nodes, csb.dir, True
+            for cs, b, follow, nodes, axis, c in (
+                    (csa, ba, csa.follow, self.fa_nodes, self.fa_axis, self.fa_c),
+                    (csb, bb, csb.follow and st.cidb != st.cida, self.fb_nodes, self.fb_axis,
+                     self.fb_c)):
+                if follow and cs.nodes is not None:  # FLAG = 1: the system's own nodes
+                    nodes[i], axis[i], c[i] = cs.nodes, cs.dir, np.eye(3)
+                else:  # fixed in its body: its axes in the frame of three body nodes
+                    ref = self._reference_nodes(b, x0, st)
+                    nodes[i], axis[i] = ref, 0
+                    c[i] = cs.axes @ axes_from_points(*x0[ref], 0).T
             for j in range(3):
                 self.lc[i, j] = index[int(st.lc[j])] if st.lc[j] else -1
                 self.dlc[i, j] = index[int(st.dlc[j])] if st.dlc[j] else -1
@@ -241,7 +244,36 @@ class JointTerm:
         self.dt_stiff = float(min(dts))
         self.qp, self.q_prev, self.m_prev = np.zeros((s, 3)), np.zeros((s, 3)), np.zeros((s, 3))
         self.q_out, self.m_out, self.mb_out = np.zeros((s, 3)), np.zeros((s, 3)), np.zeros((s, 3))
-        self._scratch_mom = None
+        if s:  # the angles at t = 0: the first step's increment starts there; friction
+            # springs start unloaded
+            self._stiffness(x0, np.zeros((model.n_nodes, 3)), 0.0)
+            self.qp[:] = self.q_prev
+            self.m_prev[:] = 0.0
+
+    def _reference_nodes(self, b: int, x0: np.ndarray, st) -> np.ndarray:  # noqa: ANN001
+        """Three nodes of body ``b`` spanning a well-shaped triangle (frames fixed in it)."""
+        cached = self._refs.get(b)
+        if cached is not None:
+            return cached
+        nodes = np.asarray(self.bodies[b].nodes, dtype=np.int64)
+        p = x0[nodes]
+        i0 = 0
+        i1 = int(np.argmax(np.linalg.norm(p - p[i0], axis=1)))
+        area = np.linalg.norm(np.cross(p[i1] - p[i0], p - p[i0]), axis=1)
+        i2 = int(np.argmax(area))
+        size = float(np.linalg.norm(p[i1] - p[i0]))
+        if size <= 0.0 or area[i2] <= 1e-6 * size * size:
+            raise _error(st, f"joint stiffness {st.jsid}: rigid part {self.bodies[b].pid} has "
+                         "no three nodes off one line to carry its coordinate system")
+        self._refs[b] = nodes[[i0, i1, i2]]
+        return self._refs[b]
+
+    def _stiffness(self, x: np.ndarray, mom: np.ndarray, dt: float) -> float:
+        return stiffness_moments(
+            x, mom, dt, self.kind, self.sna, self.snb, self.fa_nodes, self.fa_axis, self.fa_c,
+            self.fb_nodes, self.fb_axis, self.fb_c, self.cx, self.cy, self.cstart, self.lc,
+            self.dlc, self.lcg, self.es, self.fm, self.neg, self.pos, self.qp, self.q_prev,
+            self.m_prev, self.q_out, self.m_out, self.mb_out)
 
     def _stiffness_step(self, model, st, ba: int, bb: int) -> float:  # noqa: ANN001
         """ms: stable step of one joint stiffness's rotational springs and dashpots."""
@@ -296,14 +328,7 @@ class JointTerm:
                                      self.u4, self.uk, self.uc, self.s_prev, self.l_prev,
                                      self.um_out)
         if self.kind.size:
-            rot = np.stack([b.rot for b in self.bodies])
-            omega = np.stack([b.omega for b in self.bodies])
-            work += stiffness_moments(
-                state.x, state.mom, rot, omega, self.kind, self.sba, self.sbb, self.sna,
-                self.snb, self.ea0, self.eb0, self.fa_nodes, self.fa_axis, self.fa_follow,
-                self.fb_nodes, self.fb_axis, self.fb_follow, self.cx, self.cy, self.cstart,
-                self.lc, self.dlc, self.lcg, self.es, self.fm, self.neg, self.pos, self.qp,
-                self.q_prev, self.m_prev, self.q_out, self.m_out, self.mb_out)
+            work += self._stiffness(state.x, state.mom, dt)
         self.internal_energy += work
         return min(self.dt_pairs, self.dt_stiff), -1, -1
 

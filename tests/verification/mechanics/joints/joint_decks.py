@@ -158,17 +158,22 @@ PAIR_CENTRE = {"SPHERICAL": (0.0, 0.0, 0.0), "UNIVERSAL": (0.0, 0.0, 0.0),
 
 
 def joint_pair(kind: str, v0=(0.0, 0.0, 0.0), w0=(0.0, 0.0, 0.0), end: float = 1.0,  # noqa: ANN001
-               mass: float = 1.0, inertia: float = 100.0, products=(0.0, 0.0, 0.0)) -> Deck:
+               mass: float = 1.0, inertia: float = 100.0, products=(0.0, 0.0, 0.0),
+               axis: str = "y") -> Deck:
     """A fixed ground cube (part 1) and a free cube (part 2, isotropic inertia in
     kg*mm^2, centre :data:`PAIR_CENTRE`) on a joint of type ``kind`` whose axis is
     the global y axis (N1 = origin, N3 = (0, 10, 0)); N5 = (0, 0, 10); the universal
-    joint's arms are y (ground) and z (body). Initial velocity v0 / w0 of body 2."""
+    joint's arms are y (ground) and z (body). Initial velocity v0 / w0 of body 2.
+    ``axis="z"``: a revolute joint about z instead (N3 = N5's node, centre (0, 0, 5))."""
     deck = Deck()
     deck.title = f"{kind.lower()} joint"
     add_body(deck, 1, (-10.0, 0.0, 0.0), fixed=True)
-    add_body(deck, 2, (0.0, 0.0, 0.0), mass=mass, centre=PAIR_CENTRE[kind],
+    z = axis == "z" and kind == "REVOLUTE"
+    add_body(deck, 2, (0.0, 0.0, 0.0), mass=mass,
+             centre=(0.0, 0.0, 5.0) if z else PAIR_CENTRE[kind],
              inertia=(inertia, inertia, inertia), v0=v0, w0=w0, products=products)
-    nodes = dict(zip(("n1", "n2", "n3", "n4", "n5", "n6"), PAIR_NODES[kind]))
+    nodes = dict(zip(("n1", "n2", "n3", "n4", "n5", "n6"),
+                     (102, 201, 106, 205) if z else PAIR_NODES[kind]))
     deck.add(ConstrainedJoint(kind=kind, **nodes))
     deck.add(ControlTermination(endtim=end))
     return deck
@@ -185,12 +190,20 @@ def curve(deck: Deck, lcid: int, f, lo: float = -1.5, hi: float = 1.5,  # noqa: 
 
 def stiffness_pair(kind: str = "GENERALIZED", dof: int = 5, moment=(), inertia: float = 10.0,
                    end: float = 100.0, **cards) -> Deck:  # noqa: ANN001, ANN003
-    """Spherical joint of :func:`joint_pair` (centre of body 2 at the pivot, isotropic
-    inertia) with a joint stiffness between parts 1 and 2 in the global system
-    (CID 1 for both bodies; ``cards`` are its fields) and a moment about global
-    axis DOF 5 / 6 / 7 (x / y / z) on body 2: *LOAD_RIGID_BODY on curve 90 with the
-    points ``moment`` ((t ms, kN*mm) pairs)."""
-    deck = joint_pair("SPHERICAL", end=end, inertia=inertia)
+    """The joint of :func:`joint_pair` (body 2's centre on it, isotropic inertia) with a
+    joint stiffness between parts 1 and 2 in the global system (CID 1 for both
+    bodies; ``cards`` are its fields) and a moment about global axis DOF 5 / 6 / 7
+    (x / y / z) on body 2: *LOAD_RIGID_BODY on curve 90 with the points ``moment``
+    ((t ms, kN*mm) pairs). The joint is spherical, except for moments about y
+    (theta, the middle Cardan angle): a revolute joint about y. On a spherical joint
+    a fixed-direction moment about y balanced by a theta spring alone is unstable
+    (a rotation delta about z tilts the spring's moment axis by phi = -tan(theta)
+    delta, and the unbalanced part M phi turns the body further about z: growth rate
+    sqrt(M tan(theta) / I), about 0.5 /ms here), as the solver rightly shows; so is
+    a fixed-direction torque about z on a torsion spring with free bending (torque
+    buckling): moments about z use a revolute joint about z."""
+    kind_axis = {5: ("SPHERICAL", "y"), 6: ("REVOLUTE", "y"), 7: ("REVOLUTE", "z")}[dof]
+    deck = joint_pair(kind_axis[0], end=end, inertia=inertia, axis=kind_axis[1])
     deck.add(DefineCoordinateSystem(cid=1, xl=1.0, yp=1.0))
     cls = JointStiffnessGeneralized if kind == "GENERALIZED" else JointStiffnessFlexionTorsion
     deck.add(cls(jsid=1, pida=1, pidb=2, cida=1, jid=1, **cards))

@@ -1,8 +1,9 @@
 """*CONSTRAINED_JOINT_STIFFNESS_GENERALIZED and _FLEXION-TORSION against their curves.
 
-Set-up (:func:`joint_decks.stiffness_pair`): body 2 (centre at the pivot of a
-spherical joint, isotropic inertia 10 kg*mm^2) turns under a moment about one
-global axis (*LOAD_RIGID_BODY) applied as a staircase: three levels, each reached
+Set-up (:func:`joint_decks.stiffness_pair`): body 2 (centre on its joint: spherical
+for moments about x, revolute about y or z for moments about y or z, see there why;
+isotropic inertia 10 kg*mm^2) turns under a moment about one global axis
+(*LOAD_RIGID_BODY) applied as a staircase: three levels, each reached
 in 2 ms and held for 28 ms. A damping curve (moment = c * rate, c about 0.6 of
 critical at the stiffest point) settles each level in a few periods (about 9 ms).
 The angle is measured from the body's rotation matrix (not from the joint's own
