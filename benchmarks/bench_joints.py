@@ -8,11 +8,12 @@ Three models stepped with the real cycle (``solver.step.step``), after warm-up:
 - C: B plus 19 revolute joints between neighbouring cubes, each with a
   *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED (curves, damping, stops).
 
-Prints the median and best microseconds per cycle of each, the joint term's own
-time per cycle and per joint-cycle (``JointTerm.add_forces``, timed alone on the
-same states), and the ratios (C - A) / A (bodies and joints) and (C - B) / A
-(the joints alone). The rigid bodies' own per-body work is the rigid-body
-module's (``solver.rigid``).
+Prints the median and best microseconds per cycle of each (blocks of the three
+interleaved, so that the load of a shared machine hits them alike), the joint
+term's own time per cycle and per joint-cycle (``JointTerm.add_forces``, timed
+alone on the same states), the rigid bodies' own per-cycle work (``solver.rigid``,
+timed alone), and the ratios (C - A) / A (bodies and joints) and (C - B) / A (the
+joints alone).
 
 Usage: python benchmarks/bench_joints.py [--cycles 200] [--repeats 5] [--threads N]
 """
@@ -91,23 +92,42 @@ def make_deck(bodies: bool, joints: bool) -> Deck:
     return deck
 
 
-def time_model(deck: Deck, cycles: int, repeats: int) -> tuple[float, float, object, object]:
-    """Median and best seconds per cycle; the plan and state (stepped)."""
+def prepare(deck: Deck) -> tuple[object, object, object]:
+    """Model, plan and state of ``deck``, stepped past the warm-up (compilation)."""
     model = build_model(deck)
     plan = assemble(model)
     state = init_state(model, plan)
     rng = np.random.default_rng(0)
     state.v[plan.deformable] += 0.1 * rng.standard_normal((int(plan.deformable.sum()), 3))
     start(model, plan, state)
-    for _ in range(20):  # warm-up (compilation, caches)
+    for _ in range(20):
         step(model, plan, state, state.dt_next)
-    samples = []
+    return model, plan, state
+
+
+def time_block(run: tuple, cycles: int) -> float:
+    """Seconds per cycle over ``cycles`` cycles."""
+    model, plan, state = run
+    t0 = time.perf_counter()
+    for _ in range(cycles):
+        step(model, plan, state, state.dt_next)
+    return (time.perf_counter() - t0) / cycles
+
+
+def time_bodies(plan, state, calls: int, repeats: int) -> float:  # noqa: ANN001
+    """Best seconds per cycle of the rigid bodies' own per-cycle work (gather, velocity
+    and position update of every body), timed alone."""
+    x, f, mom = state.x.copy(), state.f.copy(), state.mom.copy()
+    best = np.inf
     for _ in range(repeats):
         t0 = time.perf_counter()
-        for _ in range(cycles):
-            step(model, plan, state, state.dt_next)
-        samples.append((time.perf_counter() - t0) / cycles)
-    return statistics.median(samples), min(samples), plan, state
+        for _ in range(calls):
+            for b in plan.bodies:
+                b.gather(x, f, mom)
+                b.advance_velocity(0.0)
+                b.advance_position(0.0, x)
+        best = min(best, (time.perf_counter() - t0) / calls)
+    return best
 
 
 def time_joint_term(plan, state, calls: int, repeats: int) -> tuple[float, float]:  # noqa: ANN001
@@ -133,22 +153,30 @@ def main() -> None:
         numba.set_num_threads(args.threads)
     print(f"numba threads {numba.get_num_threads()}; {args.repeats} blocks of "
           f"{args.cycles} cycles (us per cycle: median / best)")
-    res = {}
-    for label, bodies, joints in (("A block (20,000 hexahedra)", False, False),
-                                  ("B + 20 rigid bodies", True, False),
-                                  ("C + 19 revolute joints with stiffness", True, True)):
-        med, best, plan, state = time_model(make_deck(bodies, joints), args.cycles,
-                                            args.repeats)
-        res[label[0]] = (med, best)
-        print(f"{label:42s} {med * 1e6:9.1f} / {best * 1e6:9.1f}")
+    labels = {"A": "A block (20,000 hexahedra)", "B": "B + 20 rigid bodies",
+              "C": "C + 19 revolute joints with stiffness"}
+    runs = {"A": prepare(make_deck(False, False)), "B": prepare(make_deck(True, False)),
+            "C": prepare(make_deck(True, True))}
+    samples: dict[str, list[float]] = {k: [] for k in runs}
+    for _ in range(args.repeats):  # interleaved: load changes hit all three alike
+        for k, run in runs.items():
+            samples[k].append(time_block(run, args.cycles))
+    res = {k: (statistics.median(v), min(v)) for k, v in samples.items()}
+    for k, (med, best) in res.items():
+        print(f"{labels[k]:42s} {med * 1e6:9.1f} / {best * 1e6:9.1f}")
+    _, plan, state = runs["C"]
+    rb = time_bodies(plan, state, 200, args.repeats)
+    print(f"rigid bodies' own work (20 bodies): {rb * 1e6:.1f} us per cycle, "
+          f"{rb * 1e6 / N_BODIES:.2f} us per body-cycle")
     jm, jb = time_joint_term(plan, state, 2000, args.repeats)
     n = N_BODIES - 1
     print(f"joint term (19 joints, 38 pairs, 19 stiffnesses): {jm * 1e6:.1f} / {jb * 1e6:.1f} "
           f"us per cycle; {jm * 1e6 / n:.2f} / {jb * 1e6 / n:.2f} us per joint-cycle")
     a, b, c = (res[k][1] for k in "ABC")
     print(f"(C - A) / A = {100 * (c - a) / a:.1f} % (bodies and joints, best blocks); "
-          f"(C - B) / A = {100 * (c - b) / a:.1f} % (joints alone); "
-          f"joint term / A = {100 * jb / a:.2f} %")
+          f"(C - B) / A = {100 * (c - b) / a:.1f} % (joints alone)")
+    print(f"timed alone: joint term / A = {100 * jb / a:.2f} %; (joint term + rigid bodies' "
+          f"work) / A = {100 * (jb + rb) / a:.1f} %")
 
 
 if __name__ == "__main__":
