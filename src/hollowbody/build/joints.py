@@ -201,7 +201,10 @@ def _stiffnesses(b, model: Model) -> None:  # noqa: ANN001
             neg = (0.0, 0.0, it.nsabt)
             pos = (it.saal, 0.0, it.psabt)
             lcg = _curve(model, it, it.lcidg, "LCIDG")
-            dlcg = _curve(model, it, it.dlcidg, "DLCIDG")
+            if it.dlcidg:
+                raise item_error(it, f"joint stiffness {it.jsid}: DLCIDG={it.dlcidg} (a scale "
+                                 "factor on the alpha damping) is not supported")
+            dlcg = 0
         for name, v in zip(("ES", "ES", "ES"), es):
             if v < 0.0:
                 raise item_error(it, f"joint stiffness {it.jsid}: {name} must not be negative")
