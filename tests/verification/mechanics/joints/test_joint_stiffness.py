@@ -115,9 +115,9 @@ def test_generalized_negative_stop_and_friction():
 
 def test_friction_leaves_a_residual_angle():
     """theta: curve M = 5 theta, friction FM = 1 kN*mm with ES = 500 kN*mm/rad. Loading
-    to 3 kN*mm: 5 theta + 1 = 3 -> theta = 0.4 (+ 1/ES elastic); unloading to 0: the
-    friction holds 5 theta = 1 -> theta = 0.2 - ... = 0.2 (the spring unloads by
-    2 FM / ES first)."""
+    to 3 kN*mm the friction spring slips: 5 theta + FM = 3, theta = 0.4. Unloading to
+    0 it slips back until the curve's moment equals FM: 5 theta = 1, theta = 0.2 (the
+    residual angle FM / 5)."""
     pts = [(0.0, 0.0), (2.0, 3.0), (40.0, 3.0), (42.0, 0.0), (1.0e4, 0.0)]
     deck = stiffness_pair("GENERALIZED", dof=6, moment=pts, lcidt=10, dlcidt=11,
                           est=500.0, fmt=1.0)
