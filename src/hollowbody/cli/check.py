@@ -169,6 +169,13 @@ def print_summary(s: dict) -> None:
     if s.get("threads"):
         con.print(f"numba threads: {s['threads']['count']} ({s['threads']['reason']})",
                   markup=False)
+    for j in s.get("joints", []):
+        con.print(f"joint {j['jid']}: {j['type']}, nodes {', '.join(map(str, j['nodes']))}, "
+                  f"rigid parts {j['parts'][0]} / {j['parts'][1]}", markup=False)
+    for js in s.get("joint_stiffness", []):
+        con.print(f"joint stiffness {js['jsid']}: {js['type']}, parts {js['parts'][0]} / "
+                  f"{js['parts'][1]}, coordinate systems {js['cid'][0]} / {js['cid'][1]}",
+                  markup=False)
     if s["unsupported"]:
         con.print(f"unsupported keywords ({len(s['unsupported'])}, ignored):")
         for u in s["unsupported"]:

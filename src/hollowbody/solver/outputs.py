@@ -8,6 +8,7 @@
 - ``rwforc.csv``  rigid-wall forces (normal, tangential, components) per wall;
 - ``matsum.csv``  kinetic, internal and hourglass energy per part;
 - ``deforc.csv``  force, elongation and energy of each discrete element (PF = 0);
+- ``jntforc.csv`` joint forces and moments, joint stiffness angles and moments;
 - ``states.pvd`` + ``states_NNNN.vtu``  ParaView states (d3plot interval);
 - ``d3plot`` (+ ``d3plot01``) the same states for LS-PrePost (optional extra lasso-python; when
   the deck has *DATABASE_BINARY_D3PLOT or the run asks for it), written at the end;
@@ -37,6 +38,7 @@ from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
 from hollowbody.solver.d3plot_output import make_series, state_fields
 from hollowbody.solver.energies import energies, node_velocity_full_step
+from hollowbody.solver.joints import JointTerm
 from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
 DEFAULT_HISTORY_COUNT = 500
@@ -146,7 +148,7 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
 
 
 HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "rwforc",
-             "deforc")
+             "deforc", "jntforc")
 
 
 class RunOutputs:
@@ -171,7 +173,7 @@ class RunOutputs:
         default = end_time / DEFAULT_HISTORY_COUNT if end_time > 0 else 0.0
         self.clocks = {name: _Clock(req.get(name) or default)
                        for name in ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rbdout",
-                                    "rwforc", "deforc")}
+                                    "rwforc", "deforc", "jntforc")}
         self.state_clock = _Clock(model.output.d3plot_dt or
                                   (end_time / DEFAULT_STATE_COUNT if end_time > 0 else 0.0))
         self.vtk = VtkSeries(self.out, "states") if vtk else None
@@ -211,6 +213,9 @@ class RunOutputs:
         self.deforc = HistoryWriter(self.out / "deforc.csv", [
             "time [ms]", "element", "force [kN|kN*mm]", "elongation [mm|rad]", "energy [J]"],
             pos.get("deforc"))
+        self.joint_term = next((t for t in asm.terms if isinstance(t, JointTerm)), None)
+        self.jntforc = HistoryWriter(self.out / "jntforc.csv", list(JointTerm.JNTFORC_COLUMNS),
+                                     pos.get("jntforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
         if resume is not None:
@@ -287,6 +292,9 @@ class RunOutputs:
                     for i in np.nonzero(rt.print_flag == 0)[0]:
                         self.deforc.write([t, int(rt.elem_ids[i]), rt.force[i], rt.defl[i],
                                            rt.energy[i]])
+        if (self.clocks["jntforc"].due(t) or force) and self.joint_term is not None:
+            for row in self.joint_term.jntforc_rows(t, state.x):
+                self.jntforc.write(row)
         if (self.vtk is not None or self.d3plot is not None) and \
                 (self.state_clock.due(t) or force):
             self.write_state(state)

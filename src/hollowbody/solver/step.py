@@ -142,8 +142,9 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
         after = getattr(term, "after_gather", None)
         if after is not None:
             after(state, plan.bodies, dt)
-    if not np.isfinite(dt_crit) and not plan.elements:
-        # rigid bodies only (on joints): setup.rigid_element_step
+    if not plan.elements and plan.rigid_dt < dt_crit:
+        # rigid bodies only (on joints): setup.rigid_element_step, unless a term
+        # (a joint's penalty springs) needs a smaller step
         dt_crit, elem, pid = plan.rigid_dt, -1, -1
     ms = state.mass_scaling
     if ms.active:

@@ -46,6 +46,14 @@ from hollowbody.io.keyword.kw_discrete import (
     MatSpringNonlinearElastic,
     SectionDiscrete,
 )
+from hollowbody.io.keyword.kw_joints import (
+    JOINT_TYPES,
+    ConstrainedJoint,
+    DefineCoordinateNodes,
+    DefineCoordinateSystem,
+    JointStiffnessFlexionTorsion,
+    JointStiffnessGeneralized,
+)
 from hollowbody.io.keyword.kw_loads import (
     BoundarySpcNode,
     BoundarySpcSet,
@@ -117,6 +125,8 @@ __all__ = [
     "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
     "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "TIED_OFFSETS",
     "TIED_TYPES", "TiedContact", "Title",
+    "JOINT_TYPES", "ConstrainedJoint", "DefineCoordinateNodes", "DefineCoordinateSystem",
+    "JointStiffnessFlexionTorsion", "JointStiffnessGeneralized",
     "UnsupportedKeywordWarning", "deck_lines", "read_deck", "read_deck_partial",
     "read_deck_text", "write_deck",
 ]
