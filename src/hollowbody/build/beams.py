@@ -1,9 +1,107 @@
-"""Deck -> Model for one body-mechanics family (see :mod:`hollowbody.build.mechanics`)."""
+"""Deck -> Model for beams: *SECTION_BEAM and *ELEMENT_BEAM (docs/beams.md)."""
 
 from __future__ import annotations
 
-from hollowbody.model.model import Model
+import numpy as np
+
+from hollowbody.build.common import item_error
+from hollowbody.io.keyword import ElementBeam, SectionBeam
+from hollowbody.model.beams import BeamGroup, beam_frames
+from hollowbody.model.model import Model, SectionDef
+
+#: *SECTION_BEAM ELFORM values this version runs.
+SUPPORTED_ELFORM = (1, 2)
+#: cross-section types of ELFORM 1 (0 rectangular, 1 tubular).
+SUPPORTED_CST = (0, 1)
+#: QR of ELFORM 1: points per direction of the Gauss rule (1 one point, 2 2x2,
+#: 3 3x3, 5 4x4) or 3x3 Lobatto (4).
+SUPPORTED_QR = (1, 2, 3, 4, 5)
+
+
+def section_def(s: SectionBeam) -> SectionDef:
+    """The Model's section record of a *SECTION_BEAM card (kind ``"beam"``).
+
+    params: SHRF (blank 1.0), QR (blank 2), CST, NSM (kg/mm), and TS1 TS2 TT1
+    TT2 (mm) for ELFORM 1 or A (mm^2) ISS ITT J (mm^4) SA (mm^2) for ELFORM 2
+    (LS-DYNA names). Checked here: ELFORM, CST, QR and positive dimensions.
+    """
+    elform = int(s.elform or 1)
+    if elform not in SUPPORTED_ELFORM:
+        raise item_error(s, f"section {s.secid}: beam ELFORM {elform} is not supported "
+                         "(ELFORM 1 Hughes-Liu-type integrated, 2 Belytschko-Schwer resultant)")
+    p = {"SHRF": float(s.shrf or 1.0), "QR": float(s.qr if s.qr else 2), "CST": float(s.cst),
+         "NSM": float(s.nsm)}
+    if s.nsm < 0.0:
+        raise item_error(s, f"section {s.secid}: NSM must be >= 0 (got {s.nsm})")
+    if elform == 1:
+        if int(s.cst) not in SUPPORTED_CST:
+            raise item_error(s, f"section {s.secid}: CST {s.cst} is not supported (0 "
+                             "rectangular, 1 tubular)")
+        if int(p["QR"]) not in SUPPORTED_QR:
+            raise item_error(s, f"section {s.secid}: QR/IRID {int(p['QR'])} is not supported "
+                             "(1, 2, 3, 4 or 5; user rules *INTEGRATION_BEAM are not read)")
+        ts1, tt1 = float(s.ts1), float(s.tt1)
+        ts2, tt2 = float(s.ts2 or ts1), float(s.tt2 or tt1)
+        if int(s.cst) == 0 and not min(ts1, ts2, tt1, tt2) > 0.0:
+            raise item_error(s, f"section {s.secid}: a rectangular section needs TS1, TT1 > 0")
+        if int(s.cst) == 1:
+            if not min(ts1, ts2) > 0.0:
+                raise item_error(s, f"section {s.secid}: a tubular section needs the outer "
+                                 "diameter TS1 > 0")
+            if not (0.0 <= tt1 < ts1 and 0.0 <= tt2 < ts2):
+                raise item_error(s, f"section {s.secid}: the inner diameter TT1 must be in "
+                                 "[0, TS1)")
+        if s.nsloc or s.ntloc:
+            raise item_error(s, f"section {s.secid}: reference-surface offsets NSLOC/NTLOC "
+                             "are not supported (give 0)")
+        p.update(TS1=ts1, TS2=ts2, TT1=tt1, TT2=tt2)
+    else:
+        if not (s.a > 0.0 and s.iss > 0.0 and s.itt > 0.0 and s.j > 0.0):
+            raise item_error(s, f"section {s.secid}: a resultant beam needs A, ISS, ITT and J "
+                             "> 0")
+        if s.sa < 0.0:
+            raise item_error(s, f"section {s.secid}: SA must be >= 0")
+        p.update(A=float(s.a), ISS=float(s.iss), ITT=float(s.itt), J=float(s.j),
+                 SA=float(s.sa))
+    return SectionDef(int(s.secid), "beam", elform, p, s.title, s.source)
 
 
 def build(b, model: Model) -> None:  # noqa: ANN001 - builder.Builder
-    """Read this family's keywords from ``b`` into ``model`` (nothing yet)."""
+    """*ELEMENT_BEAM -> ``model.beam_groups`` (one group per part)."""
+    items = b.of(ElementBeam)
+    if not items:
+        return
+    by_pid: dict[int, list] = {}
+    seen: set[int] = set()
+    for it in items:
+        if it.eid in seen:
+            raise item_error(it, f"beam element id {it.eid} is defined twice")
+        seen.add(it.eid)
+        part = model.parts.get(it.pid)
+        if part is None:
+            raise item_error(it, f"beam element {it.eid} refers to part {it.pid} which is not "
+                             "defined")
+        sec = model.sections.get(part.secid)
+        if sec is None or sec.kind != "beam":
+            kind = "no section" if sec is None else f"a {sec.kind} section"
+            raise item_error(it, f"beam element {it.eid}: its part {it.pid} has {kind} "
+                             f"(section {part.secid}), not a *SECTION_BEAM")
+        if it.rt1 or it.rr1 or it.rt2 or it.rr2:
+            raise item_error(it, f"beam element {it.eid}: release codes RT1/RR1/RT2/RR2 are "
+                             "not supported (give 0; model a hinge with a joint instead)")
+        if it.n1 == it.n2:
+            raise item_error(it, f"beam element {it.eid}: N1 and N2 are the same node")
+        ids = [it.n1, it.n2] + ([it.n3] if it.n3 else [])
+        idx = b.node_list(np.asarray(ids, dtype=np.int64), it, f"beam element {it.eid}")
+        row = [int(idx[0]), int(idx[1]), int(idx[2]) if it.n3 else -1]
+        frames, length, bad = beam_frames(np.asarray([row]), model.node_x0)
+        if bad[0]:
+            what = ("N1 and N2 are at the same place" if length[0] <= 0.0 else
+                    f"orientation node N3 {it.n3} is collinear with N1-N2")
+            raise item_error(it, f"beam element {it.eid}: {what}")
+        by_pid.setdefault(it.pid, []).append((it.eid, row))
+    for pid in sorted(by_pid):
+        rows = by_pid[pid]
+        model.beam_groups.append(BeamGroup(
+            pid=pid, elem_ids=np.asarray([r[0] for r in rows], dtype=np.int64),
+            conn=np.asarray([r[1] for r in rows], dtype=np.int32).reshape(-1, 3)))

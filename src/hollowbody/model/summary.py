@@ -145,6 +145,9 @@ def summarize(model: Model) -> dict:
         elements["triangles"] += tri
         elements["shells"] += g.conn.shape[0] - tri
         count[g.pid] = count.get(g.pid, 0) + g.conn.shape[0]
+    for g in model.beam_groups:  # [beams]
+        elements["beams"] = elements.get("beams", 0) + int(g.conn.shape[0])
+        count[g.pid] = count.get(g.pid, 0) + g.conn.shape[0]
     _, part_mass = lumped_node_mass(model)
     for pid, pin in model.part_inertia.items():
         if pin.tm > 0.0:
@@ -185,7 +188,7 @@ def problems(model: Model, summary: dict) -> list[str]:
     out = []
     if model.n_nodes == 0:
         out.append("no nodes")
-    if not model.solid_groups and not model.shell_groups:
+    if not model.solid_groups and not model.shell_groups and not model.beam_groups:
         out.append("no elements")
     if model.controls.end_time <= 0.0:
         out.append("no termination time (*CONTROL_TERMINATION ENDTIM is 0)")

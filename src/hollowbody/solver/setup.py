@@ -145,6 +145,8 @@ def assemble(model: Model) -> Assembly:
     for rt in [*beam_runtimes(model, x0), *discrete_runtimes(model, x0)]:
         counts[rt.family] = counts.get(rt.family, 0) + int(rt.n_elem)
         asm.elements.append(rt)
+        if rt.family == "beams":  # [beams] part kinetic energies (matsum)
+            asm.part_share[rt.pid] = _part_share(n, rt.conn, rt.mass)
     asm.counts = counts
     asm.node_rot_inertia = np.zeros(n)
     for rt in asm.elements:
