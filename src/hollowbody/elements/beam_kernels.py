@@ -90,29 +90,23 @@ def _rotate(tr, i: int, a: int, wx: float, wy: float, wz: float, dt: float) -> N
 
 
 @njit(cache=True, error_model="numpy")
+def _dot_rotated(tr, frame0, i: int, a: int, e, row: int, col: int) -> float:
+    """e[row] . (R_a E0[col]): entry (row, col) of Q_a = E R_a E0^T."""
+    out = 0.0
+    for c in range(3):
+        v = tr[i, a, c, 0] * frame0[i, col, 0] + tr[i, a, c, 1] * frame0[i, col, 1] \
+            + tr[i, a, c, 2] * frame0[i, col, 2]
+        out += e[row, c] * v
+    return out
+
+
+@njit(cache=True, error_model="numpy")
 def _node_rotation(tr, frame0, i: int, a: int, e, out, k0: int) -> None:
     """Rotation vector (local r, s, t) of node a relative to the frame e (3, 3 rows)
-    into out[k0:k0 + 3] (rad; valid below 90 degrees per element)."""
-    q00 = q01 = q02 = q10 = q11 = q12 = q20 = q21 = q22 = 0.0
-    for j in range(3):
-        v0 = tr[i, a, 0, 0] * frame0[i, j, 0] + tr[i, a, 0, 1] * frame0[i, j, 1] \
-            + tr[i, a, 0, 2] * frame0[i, j, 2]
-        v1 = tr[i, a, 1, 0] * frame0[i, j, 0] + tr[i, a, 1, 1] * frame0[i, j, 1] \
-            + tr[i, a, 1, 2] * frame0[i, j, 2]
-        v2 = tr[i, a, 2, 0] * frame0[i, j, 0] + tr[i, a, 2, 1] * frame0[i, j, 1] \
-            + tr[i, a, 2, 2] * frame0[i, j, 2]
-        d0 = e[0, 0] * v0 + e[0, 1] * v1 + e[0, 2] * v2
-        d1 = e[1, 0] * v0 + e[1, 1] * v1 + e[1, 2] * v2
-        d2 = e[2, 0] * v0 + e[2, 1] * v1 + e[2, 2] * v2
-        if j == 0:
-            q00, q10, q20 = d0, d1, d2
-        elif j == 1:
-            q01, q11, q21 = d0, d1, d2
-        else:
-            q02, q12, q22 = d0, d1, d2
-    sx = 0.5 * (q21 - q12)
-    sy = 0.5 * (q02 - q20)
-    sz = 0.5 * (q10 - q01)
+    into out[k0:k0 + 3] (rad; from the skew part of Q_a, valid below 90 degrees)."""
+    sx = 0.5 * (_dot_rotated(tr, frame0, i, a, e, 2, 1) - _dot_rotated(tr, frame0, i, a, e, 1, 2))
+    sy = 0.5 * (_dot_rotated(tr, frame0, i, a, e, 0, 2) - _dot_rotated(tr, frame0, i, a, e, 2, 0))
+    sz = 0.5 * (_dot_rotated(tr, frame0, i, a, e, 1, 0) - _dot_rotated(tr, frame0, i, a, e, 0, 1))
     sn = math.sqrt(sx * sx + sy * sy + sz * sz)
     fac = 1.0
     if sn > 1.0e-12:

@@ -11,9 +11,8 @@ documented default: give N3 where the section is not symmetric.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
