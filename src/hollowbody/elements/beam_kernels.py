@@ -117,6 +117,31 @@ def _node_rotation(tr, frame0, i: int, a: int, e, out, k0: int) -> None:
 
 
 @njit(cache=True, error_model="numpy")
+def _spin_moment(t0: float, t1: float, t2: float, m0: float, m1: float, m2: float
+                 ) -> tuple[float, float, float]:
+    """Lambda(theta)^T m: the moment conjugate to the spin of a node, given the
+    moment m conjugate to its rotation vector theta (local components).
+
+    Lambda = d theta / d omega = I - [theta]x / 2 + eta [theta]x^2,
+    eta = (1 - (a / 2) cot(a / 2)) / a^2 (a = |theta|; 1/12 at 0), so
+    Lambda^T m = m + theta x m / 2 + eta theta x (theta x m).
+    """
+    a2 = t0 * t0 + t1 * t1 + t2 * t2
+    if a2 < 1.0e-8:
+        eta = 1.0 / 12.0 + a2 / 720.0
+    else:
+        a = math.sqrt(a2)
+        eta = (1.0 - 0.5 * a / math.tan(0.5 * a)) / a2
+    c0 = t1 * m2 - t2 * m1
+    c1 = t2 * m0 - t0 * m2
+    c2 = t0 * m1 - t1 * m0
+    d0 = t1 * c2 - t2 * c1
+    d1 = t2 * c0 - t0 * c2
+    d2 = t0 * c1 - t1 * c0
+    return (m0 + 0.5 * c0 + eta * d0, m1 + 0.5 * c1 + eta * d1, m2 + 0.5 * c2 + eta * d2)
+
+
+@njit(cache=True, error_model="numpy")
 def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, nat, force,
                 res, law: int, sec, pts, sig, back, eps_p, hard_x, hard_y, dt0, dte,
                 e_work, rot) -> tuple[float, int, float]:
@@ -250,15 +275,19 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
         nat[i, 3] = dn3
         nat[i, 4] = dn4
         nat[i, 5] = dn5
-        # nodal forces and moments (internal, subtracted)
-        sy = (m1s + m2s) / ln
-        sz = (m1t + m2t) / ln
+        # nodal forces and moments (internal, subtracted): the end moments
+        # (-T, M1s, M1t), (T, M2s, M2t) through Lambda(theta_a)^T (_spin_moment)
+        a0, a1, a2 = _spin_moment(rot[i, 0], rot[i, 1], rot[i, 2], -fT, m1s, m1t)
+        b0, b1, b2 = _spin_moment(rot[i, 3], rot[i, 4], rot[i, 5], fT, m2s, m2t)
+        sy = (a1 + b1) / ln
+        sz = (a2 + b2) / ln
+        tw = 0.5 * (a0 + b0)
         for c in range(3):
             fc = fN * e[0, c] + sy * e[2, c] - sz * e[1, c]
             f[n2, c] -= fc
             f[n1, c] += fc
-            mom[n1, c] -= m1s * e[1, c] + m1t * e[2, c] - fT * e[0, c]
-            mom[n2, c] -= m2s * e[1, c] + m2t * e[2, c] + fT * e[0, c]
+            mom[n1, c] -= (a0 - tw) * e[0, c] + a1 * e[1, c] + a2 * e[2, c]
+            mom[n2, c] -= (b0 - tw) * e[0, c] + b1 * e[1, c] + b2 * e[2, c]
         d = dt0[i] * ln / L
         dte[i] = d
         if d < dmin:
