@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.build.common import item_error
-from hollowbody.io.keyword import ElementBeam, SectionBeam
+from hollowbody.errors import DeckError
+from hollowbody.io.keyword import ElementBeam, IntegrationBeam, SectionBeam
 from hollowbody.model.beams import BeamGroup, beam_frames
 from hollowbody.model.model import Model, SectionDef
 
@@ -37,9 +38,12 @@ def section_def(s: SectionBeam) -> SectionDef:
         if int(s.cst) not in SUPPORTED_CST:
             raise item_error(s, f"section {s.secid}: CST {s.cst} is not supported (0 "
                              "rectangular, 1 tubular)")
-        if int(p["QR"]) not in SUPPORTED_QR:
+        if int(p["QR"]) not in SUPPORTED_QR and int(p["QR"]) >= 0:
             raise item_error(s, f"section {s.secid}: QR/IRID {int(p['QR'])} is not supported "
-                             "(1, 2, 3, 4 or 5; user rules *INTEGRATION_BEAM are not read)")
+                             "(1, 2, 3, 4 or 5, or -IRID for an *INTEGRATION_BEAM rule)")
+        if int(p["QR"]) < 0 and int(s.cst) != 0:
+            raise item_error(s, f"section {s.secid}: a user integration rule (QR < 0) needs a "
+                             "rectangular section here (CST 0)")
         ts1, tt1 = float(s.ts1), float(s.tt1)
         ts2, tt2 = float(s.ts2 or ts1), float(s.tt2 or tt1)
         if int(s.cst) == 0 and not min(ts1, ts2, tt1, tt2) > 0.0:
@@ -100,8 +104,49 @@ def build(b, model: Model) -> None:  # noqa: ANN001 - builder.Builder
                     f"orientation node N3 {it.n3} is collinear with N1-N2")
             raise item_error(it, f"beam element {it.eid}: {what}")
         by_pid.setdefault(it.pid, []).append((it.eid, row))
+    rules = _user_rules(b, model)
     for pid in sorted(by_pid):
         rows = by_pid[pid]
+        sec = model.sections[model.parts[pid].secid]
+        irid = -int(sec.params.get("QR", 2)) if sec.elform == 1 else 0
+        if irid > 0 and irid not in rules:
+            raise DeckError(f"section {sec.secid}: integration rule IRID {irid} "
+                            "(*INTEGRATION_BEAM) is not defined", sec.source.file,
+                            sec.source.line, "SECTION_BEAM")
         model.beam_groups.append(BeamGroup(
             pid=pid, elem_ids=np.asarray([r[0] for r in rows], dtype=np.int64),
-            conn=np.asarray([r[1] for r in rows], dtype=np.int32).reshape(-1, 3)))
+            conn=np.asarray([r[1] for r in rows], dtype=np.int32).reshape(-1, 3),
+            rule=rules[irid] if irid > 0 else None))
+
+
+def _user_rules(b, model: Model) -> dict[int, np.ndarray]:  # noqa: ANN001 - builder.Builder
+    """*INTEGRATION_BEAM rules by IRID: (p, 3) rows S, T (normalised), WF x RA.
+
+    Sets ``RA`` in the params of the sections that use them (their area is
+    RA TS TT). Only user-defined points (ICST 0) with no per-point part.
+    """
+    out: dict[int, np.ndarray] = {}
+    for it in b.of(IntegrationBeam):
+        if it.irid in out:
+            raise item_error(it, f"integration rule IRID {it.irid} is defined twice")
+        if it.icst:
+            raise item_error(it, f"integration rule {it.irid}: standard sections (ICST "
+                             f"{it.icst}) are not supported (give the points, ICST 0)")
+        pts = np.asarray(it.points, dtype=np.float64).reshape(-1, 4)
+        if pts.shape[0] == 0 or pts.shape[0] != it.nip:
+            raise item_error(it, f"integration rule {it.irid}: NIP must be > 0 with one card "
+                             "per point")
+        if np.any(pts[:, 3] != 0):
+            raise item_error(it, f"integration rule {it.irid}: a material part per point "
+                             "(PID) is not supported")
+        if np.any(np.abs(pts[:, :2]) > 1.0) or np.any(pts[:, 2] <= 0.0):
+            raise item_error(it, f"integration rule {it.irid}: S and T must be in [-1, 1] and "
+                             "WF > 0")
+        ra = float(it.ra) if it.ra else 1.0
+        rule = pts[:, :3].copy()
+        rule[:, 2] *= ra
+        out[int(it.irid)] = rule
+        for sec in model.sections.values():
+            if sec.kind == "beam" and sec.elform == 1 and -int(sec.params.get("QR", 2)) == it.irid:
+                sec.params["RA"] = ra
+    return out

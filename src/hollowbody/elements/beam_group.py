@@ -101,9 +101,20 @@ class BeamGroupRuntime:
                 self.sec[S_PHIT] = 12.0 * e_mod * itt / kga
         else:
             area, iss, itt, tors = exact_constants(p)
-            kga = shrf * g_mod * area
             self.law = LAW_INTEGRATED
-            self.pts = np.ascontiguousarray(section_points(p))
+            if group.rule is not None:  # *INTEGRATION_BEAM points
+                ts, tt = 0.5 * (p["TS1"] + p["TS2"]), 0.5 * (p["TT1"] + p["TT2"])
+                r = np.asarray(group.rule, dtype=np.float64)
+                self.pts = np.ascontiguousarray(np.column_stack(
+                    [0.5 * ts * r[:, 0], 0.5 * tt * r[:, 1], ts * tt * r[:, 2]]))
+                w = self.pts[:, 2]
+                area = float(w.sum())
+                iss = float((w * self.pts[:, 1] ** 2).sum())
+                itt = float((w * self.pts[:, 0] ** 2).sum())
+                tors = iss + itt
+            else:
+                self.pts = np.ascontiguousarray(section_points(p))
+            kga = shrf * g_mod * area
             self.sec[S_E], self.sec[S_GS], self.sec[S_HK] = e_mod, shrf * g_mod, mat.hk
             self.sec[S_PLASTIC] = float(mat.kind != 0)
         self.area, self.iss, self.itt, self.torsion = float(area), float(iss), float(itt), \

@@ -26,12 +26,16 @@ class BeamGroup:
     """Beams of one part.
 
     elem_ids: (e,) int64 LS-DYNA ids; conn: (e, 3) int32 node indices N1, N2 and
-    the orientation node N3 (-1 where the card has none).
+    the orientation node N3 (-1 where the card has none). rule: (p, 3) float64
+    user integration points of the section (*INTEGRATION_BEAM: S and T in
+    [-1, 1], fractions of the half widths TS / 2 and TT / 2, and WF x RA, the
+    point's area as a fraction of TS TT), or None for the section's QR rule.
     """
 
     pid: int
     elem_ids: np.ndarray  # (e,) int64
     conn: np.ndarray  # (e, 3) int32
+    rule: np.ndarray | None = None
 
 
 def default_reference(axis: np.ndarray) -> np.ndarray:
@@ -82,9 +86,10 @@ def section_constants(elform: int, params: dict[str, float]
     if int(params.get("CST", 0)) == 1:
         i = math.pi * (ts ** 4 - tt ** 4) / 64.0
         return 0.25 * math.pi * (ts * ts - tt * tt), i, i, 2.0 * i
-    iss = ts * tt ** 3 / 12.0
-    itt = tt * ts ** 3 / 12.0
-    return ts * tt, iss, itt, iss + itt
+    ra = float(params.get("RA", 1.0))  # a user rule's relative area (*INTEGRATION_BEAM)
+    iss = ra * ts * tt ** 3 / 12.0
+    itt = ra * tt * ts ** 3 / 12.0
+    return ra * ts * tt, iss, itt, iss + itt
 
 
 def beam_masses(group: BeamGroup, rho: float, section_elform: int,

@@ -76,7 +76,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
 
 class EndLoad:
     """Force term: ``force(t)`` (3,) kN and ``moment(t)`` (3,) kN mm on node ``node``
-    (a 0-based index), and damping ``-damping m v`` (1/ms) on every node.
+    (a 0-based index), and damping ``-damping m v`` (1/ms) on every node; or
+    ``spin(t)`` (3,) rad/ms: the node's rotational velocity imposed.
 
     ``external_work`` (J): the load's work (trapezoid of force times the
     displacement increments); ``damping_work`` (J): energy taken by damping.
@@ -86,8 +87,10 @@ class EndLoad:
 
     def __init__(self, node: int, force: Callable[[float], np.ndarray] | None = None,
                  moment: Callable[[float], np.ndarray] | None = None,
-                 damping: float = 0.0) -> None:
+                 damping: float = 0.0, spin: Callable[[float], np.ndarray] | None = None
+                 ) -> None:
         self.node = int(node)
+        self.spin = spin
         self.force = force
         self.moment = moment
         self.damping = float(damping)
@@ -95,6 +98,11 @@ class EndLoad:
         self.damping_work = 0.0
         self._last_f = np.zeros(3)
         self._last_m = np.zeros(3)
+
+    def constrain(self, state, dt: float) -> None:  # noqa: ANN001
+        """With ``spin``: the node's rotational velocity (rad/ms) imposed at t + dt / 2."""
+        if self.spin is not None:
+            state.w[self.node] = np.asarray(self.spin(state.t + 0.5 * dt), float)
 
     def add_forces(self, state, dt: float) -> tuple[float, int, int]:  # noqa: ANN001
         """Add the load (and damping) at t^{n+1}; its work over the last step."""

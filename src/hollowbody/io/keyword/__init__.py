@@ -9,7 +9,7 @@ See ``docs/keyword.md`` for the supported keywords and the deck-building API.
 
 from hollowbody.io.keyword.base import KeywordItem, RawKeyword, SimpleKeyword, Title
 from hollowbody.io.keyword.deck import Deck, Include
-from hollowbody.io.keyword.kw_beams import ElementBeam, SectionBeam
+from hollowbody.io.keyword.kw_beams import ElementBeam, IntegrationBeam, SectionBeam
 from hollowbody.io.keyword.kw_contact import (
     CONTACT_TYPES,
     TIED_OFFSETS,
@@ -73,7 +73,8 @@ __all__ = [
     "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
     "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
     "DatabaseHistoryNodeSet",
-    "Deck", "DefineCurve", "ElementBeam", "Hourglass", "Include", "InitialVelocity",
+    "Deck", "DefineCurve", "ElementBeam", "Hourglass", "IntegrationBeam", "Include",
+    "InitialVelocity",
     "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem", "MassElements",
     "MatElastic", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
     "MatSimplifiedRubber", "Material", "Nodes", "Part", "PartialRead", "PartInertia",

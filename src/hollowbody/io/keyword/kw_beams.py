@@ -1,4 +1,4 @@
-"""Beam keywords: *SECTION_BEAM and *ELEMENT_BEAM (docs/beams.md).
+"""Beam keywords: *SECTION_BEAM, *ELEMENT_BEAM, *INTEGRATION_BEAM (docs/beams.md).
 
 Field names are the LS-DYNA ones in lower case (``qr`` is QR/IRID); defaults
 are LS-DYNA's. The second card of *SECTION_BEAM depends on ELFORM: for the
@@ -9,10 +9,11 @@ no second card and rejected by the builder.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar
 
-from hollowbody.io.keyword.base import SimpleKeyword, register
+from hollowbody.io.keyword.base import Block, Cursor, SimpleKeyword, register
+from hollowbody.io.keyword.cards import Field, format_card
 
 #: ELFORM values whose second card is the integrated-section card (TS1 ...).
 INTEGRATED_ELFORMS = (1, 11)
@@ -91,3 +92,59 @@ class ElementBeam(SimpleKeyword):
     CARDS: ClassVar[tuple[str, ...]] = (
         "eid:8 pid:8 n1:8 n2:8 n3:8 rt1:8 rr1:8 rt2:8 rr2:8 local:8",)
     REPEAT: ClassVar[bool] = True
+
+
+@register
+@dataclass(kw_only=True)
+class IntegrationBeam(SimpleKeyword):
+    """*INTEGRATION_BEAM: IRID NIP RA ICST K; with ICST = 0, NIP cards S T WF PID
+    (``points``: rows [S, T, WF, PID]; S, T normalised coordinates in [-1, 1],
+    WF the point's share of the area). Standard sections (ICST > 0, with the
+    dimension card D1..D6) are read by the class but rejected by the builder.
+    """
+
+    irid: int = 0
+    nip: int = 0
+    ra: float = 0.0
+    icst: int = 0
+    k: int = 0
+    d1: float = 0.0
+    d2: float = 0.0
+    d3: float = 0.0
+    d4: float = 0.0
+    sref: float = 0.0
+    tref: float = 0.0
+    d5: float = 0.0
+    d6: float = 0.0
+    points: list[list[float]] = field(default_factory=list)
+    title: str = ""
+
+    KEYWORD: ClassVar[str] = "INTEGRATION_BEAM"
+    CARDS: ClassVar[tuple[str, ...]] = ("irid nip ra icst k",
+                                        "d1 d2 d3 d4 sref tref d5 d6")
+    N_REQUIRED: ClassVar[int] = 2
+    REPEAT: ClassVar[bool] = True
+    TITLE_ATTR: ClassVar[str | None] = "title"
+
+    _POINT: ClassVar[tuple[Field, ...]] = (Field("s", 10, "f"), Field("t", 10, "f"),
+                                           Field("wf", 10, "f"), Field("pid", 10, "i"))
+
+    @classmethod
+    def want_card(cls, index: int, values: dict[str, object]) -> bool:
+        return index == 0 or int(values.get("icst", 0) or 0) > 0  # type: ignore[arg-type]
+
+    @classmethod
+    def read_tail(cls, cur: Cursor, block: Block, values: dict[str, object]) -> dict[str, object]:
+        if int(values.get("icst", 0) or 0) > 0:  # type: ignore[arg-type]
+            return {}
+        pts: list[list[float]] = []
+        for k in range(int(values.get("nip", 0) or 0)):  # type: ignore[arg-type]
+            _, vals = cur.parse(cls._POINT, f"integration point {k + 1} (S, T, WF, PID)")
+            pts.append([float(vals.get(f.name, 0) or 0) for f in cls._POINT])  # type: ignore[arg-type]
+        return {"points": pts}
+
+    def tail_lines(self, fmt: str) -> list[str]:
+        if self.icst > 0:
+            return []
+        return [format_card({"s": p[0], "t": p[1], "wf": p[2], "pid": int(p[3])},
+                            self._POINT, fmt) for p in self.points]
