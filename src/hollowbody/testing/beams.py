@@ -28,7 +28,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
                     = None, qr: int = 2, shrf: float = 5.0 / 6.0, e_mod: float = 200.0,
                     nu: float = 0.3, rho: float = 7.85e-6, sigy: float = 0.0,
                     etan: float = 0.0, end_time: float = 1.0, tssfac: float = 0.9,
-                    orientation: bool = True, shear_area: float | None = None) -> str:
+                    orientation: bool = True, shear_area: float | None = None,
+                    gauss_rule: tuple[int, int] | None = None) -> str:
     """Keyword text of a clamped beam along +x (nodes 1..n+1, elements 1..n).
 
     Section: rectangle ``width`` (s, along global y) x ``height`` (t, along z),
@@ -36,7 +37,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
     rectangle's A, ISS, ITT, J (St Venant torsion constant of the rectangle)
     and SA = shrf A (or ``shear_area``). sigy > 0: *MAT_PLASTIC_KINEMATIC with
     ETAN (BETA 1, isotropic), else *MAT_ELASTIC. orientation: N3 node above
-    the root (node n+2 at y = 10), else no N3.
+    the root (node n+2 at y = 10), else no N3. gauss_rule (n_s, n_t): ELFORM 1
+    with an *INTEGRATION_BEAM rule (IRID 1) of n_s x n_t Gauss points.
     """
     lines = ["*KEYWORD", "*TITLE", "beam cantilever", "*CONTROL_TERMINATION",
              _f(end_time), "*CONTROL_TIMESTEP", _f(0.0) + _f(tssfac), "*NODE"]
@@ -59,9 +61,17 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
         lines.append("".join(_f(v) for v in (area, iss, itt, tors, sa)))
     else:
         cst = 1 if tube else 0
-        lines.append(f"{1:10d}{1:10d}{_f(shrf)}{qr:10d}{cst:10d}")
+        rule = -1 if gauss_rule else qr
+        lines.append(f"{1:10d}{1:10d}{_f(shrf)}{rule:10d}{cst:10d}")
         dims = (tube[0], tube[0], tube[1], tube[1]) if tube else (width, width, height, height)
         lines.append("".join(_f(v) for v in dims))
+        if gauss_rule:
+            xs, ws = np.polynomial.legendre.leggauss(gauss_rule[0])
+            xt, wt = np.polynomial.legendre.leggauss(gauss_rule[1])
+            lines += ["*INTEGRATION_BEAM", f"{1:10d}{xs.size * xt.size:10d}{_f(1.0)}"]
+            for a, wa in zip(xs, ws):
+                for b, wb in zip(xt, wt):
+                    lines.append(f"{a:10.7f}{b:10.7f}{0.25 * wa * wb:10.7f}")
     if sigy > 0.0:
         lines += ["*MAT_PLASTIC_KINEMATIC", "".join(
             [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(1.0)])]
