@@ -3,8 +3,8 @@
 Field names are the LS-DYNA ones in lower case (``qr`` is QR/IRID); defaults
 are LS-DYNA's. The second card of *SECTION_BEAM depends on ELFORM: for the
 integrated beams (ELFORM 1, 11) TS1 TS2 TT1 TT2 NSLOC NTLOC, for the resultant
-beams (ELFORM 2, 12, 13) A ISS ITT J SA IST; other formulations are read with
-no second card and rejected by the builder.
+beams (ELFORM 2, 12, 13) A ISS ITT J SA IST; other formulations are read
+with their second card in the A .. IST fields and rejected by the builder.
 """
 
 from __future__ import annotations
@@ -26,7 +26,9 @@ RESULTANT_ELFORMS = (2, 12, 13)
 class SectionBeam(SimpleKeyword):
     """*SECTION_BEAM: SECID ELFORM SHRF QR/IRID CST SCOOR NSM NAUPD; then
     TS1 TS2 TT1 TT2 NSLOC NTLOC (ELFORM 1, 11) or A ISS ITT J SA IST (ELFORM 2,
-    12, 13). Lengths mm, areas mm^2, second moments mm^4, NSM kg/mm."""
+    12, 13). Lengths mm, areas mm^2, second moments mm^4, NSM kg/mm. The second
+    card of the other formulations (truss, discrete, ...) is kept positionally in
+    the A .. IST fields so that the builder can name the ELFORM it rejects."""
 
     secid: int = 0
     elform: int = 1
@@ -63,8 +65,8 @@ class SectionBeam(SimpleKeyword):
         elform = int(values.get("elform", 1) or 1)  # type: ignore[arg-type]
         if index == 1:
             return elform in INTEGRATED_ELFORMS
-        if index == 2:
-            return elform in RESULTANT_ELFORMS
+        if index == 2:  # also the second card of the other formulations (rejected later)
+            return elform not in INTEGRATED_ELFORMS
         return True
 
 
