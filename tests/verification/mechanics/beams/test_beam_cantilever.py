@@ -15,13 +15,13 @@ import math
 import numpy as np
 import pytest
 from beam_runs import (
-    C,
-    E,
     F1,
     I_S,
-    L,
     RHO,
     A,
+    C,
+    E,
+    L,
     add_load,
     energy_sum,
     engine,
