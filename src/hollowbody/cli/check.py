@@ -125,7 +125,8 @@ def print_summary(s: dict) -> None:
     con.print(f"nodes {s['nodes']}; solids: {e['hexahedra']} hexahedra, {e['wedges']} wedges, "
               f"{e['tetrahedra']} tetrahedra" +
               (f", {e['other_solids']} other" if e["other_solids"] else "") +
-              f"; shells: {e['shells']} quadrilaterals, {e['triangles']} triangles; "
+              f"; shells: {e['shells']} quadrilaterals, {e['triangles']} triangles; " +
+              (f"beams: {e['beams']}; " if e.get("beams") else "") +
               f"mass elements {e['mass_elements']}")
     table = Table(title="parts", title_justify="left")
     for col in ("pid", "title", "elements", "section", "material", "mass (kg)"):
@@ -154,7 +155,8 @@ def print_summary(s: dict) -> None:
     ts = s["time_step"] or {"solid": None, "shell": None, "run_dt": None}
     if s["time_step"] is not None:
         con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; "
-                  f"shells {_fmt_dt(ts['shell'])}")
+                  f"shells {_fmt_dt(ts['shell'])}" +
+                  (f"; beams {_fmt_dt(ts['beam'])}" if ts.get("beam") else ""))
     if ts["run_dt"]:
         con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "
