@@ -18,8 +18,12 @@ per unit mass; ``L^2 / 4`` scales it up (as explicit codes do for beams) so
 that the rotational modes of the element are never faster than its axial
 wave: with it, the element's exact highest frequency (lumped masses, the
 element's elastic stiffness) gives a critical step of at least ``L / c`` for
-every aspect ratio (checked by ``tests/unit/elements/test_beam_section.py``).
-The step of each element is computed exactly at set-up (:func:`element_step`).
+every aspect ratio when the beam has shear flexibility (ELFORM 1; ELFORM 2
+with SA > 0), and for L >= 2 h for the Euler-Bernoulli resultant beam (SA = 0),
+whose stubby elements are stiffer in bending (12 EI / L^3) than axially
+(checked by ``tests/unit/elements/test_beam_section.py``). The step of each
+element is computed exactly at set-up (:func:`element_step`) and scaled with
+the current length in the cycle.
 """
 
 from __future__ import annotations
