@@ -52,9 +52,9 @@ def test_static_tip_deflection(tmp_path, elform, n):
 def test_first_frequency_and_energy_balance(tmp_path, elform):
     """A tip load ramped on and off (half cosines, 1.2 ms each), then free
     vibration for 3 periods: the frequency from the tip's zero crossings
-    against Euler-Bernoulli (2 %; 20 elements: measured -0.16 % for ELFORM 2,
-    the shear and the scaled rotary inertia lower it) and the energy balance
-    IE + KE = W (0.5 % of W: central differences conserve energy to O(dt^2))."""
+    against Euler-Bernoulli (2 %; 20 elements: measured -0.39 % for ELFORM 2,
+    -0.34 % for ELFORM 1: shear and the scaled rotary inertia lower it) and the
+    energy balance IE + KE = W at every cycle (1e-4 of W; measured 1.3e-6)."""
     n = 20
     run = engine(tmp_path, n=n, elform=elform)
     tr = 1.2
@@ -74,7 +74,7 @@ def test_first_frequency_and_energy_balance(tmp_path, elform):
     assert abs(f / F1 - 1.0) < 0.02
     _, _, w = energy_sum(run)
     assert w > 0.0
-    assert worst[0] < 0.005 * w
+    assert worst[0] < 1e-4 * w
 
 
 @pytest.mark.parametrize("elform", [2, 1])
@@ -88,8 +88,8 @@ def test_time_step_is_the_axial_wave(tmp_path, elform):
 
 @pytest.mark.parametrize("elform", [2, 1])
 def test_axial_frequency(tmp_path, elform):
-    """Axial vibration of the clamped-free bar: f = c / (4 L) (lumped mass, 20
-    elements: -0.3 % dispersion of the first mode; tolerance 1 %)."""
+    """Axial vibration of the clamped-free bar from a first-mode velocity field:
+    f = c / (4 L) (20 elements, lumped mass: measured -0.006 %; tolerance 1 %)."""
     n = 20
     run = engine(tmp_path, n=n, elform=elform)
     run.state.v[: n + 1, 0] = 1.0e-3 * np.sin(0.5 * math.pi * run.model.node_x0[: n + 1, 0] / L)
