@@ -169,6 +169,12 @@ class BeamGroupRuntime:
         """(e,) ms critical step of each element at the last call (inf when deleted)."""
         return self._dte
 
+    @property
+    def inverted(self) -> np.ndarray:
+        """(e,) bool: beams never turn inside out (all False; the solver's erosion
+        asks volume-less groups for this)."""
+        return np.zeros(self.n_elem, dtype=bool)
+
     # -- the cycle ---------------------------------------------------------------
     def add_forces(self, x: np.ndarray, v: np.ndarray, dt: float, f: np.ndarray,
                    w: np.ndarray | None = None, moment: np.ndarray | None = None
