@@ -297,6 +297,9 @@ class RunOutputs:
             self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
         for g in self.model.shell_groups:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
+        for rt in self.asm.elements:  # [beams] line cells (N1, N2), the runtime's own data
+            if getattr(rt, "family", None) == "beams":
+                self._add_block(cells, data, "line", rt, rt)
         if not cells:
             return
         u = state.x - self.asm.node_x0

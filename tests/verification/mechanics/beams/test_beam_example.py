@@ -67,3 +67,19 @@ def test_mass_scaling_of_beams(tmp_path):
     # the final record (the end-time state, written twice) is left out: its
     # kinetic energy is that of the half step (measured ratio 1.0002 there)
     assert np.abs(glstat[:-2, 9] - 1.0).max() < 1e-4
+
+
+def test_beams_in_the_vtk_states(tmp_path):
+    """The states files hold the beams as line cells with their part, id, mean
+    section stress and alive flag."""
+    import meshio
+
+    run_deck(DECK, tmp_path / "run", end_time=0.05, vtk=True)
+    files = sorted((tmp_path / "run").rglob("*.vtu"))
+    assert files
+    mesh = meshio.read(files[-1])
+    lines = [c for c in mesh.cells if c.type == "line"]
+    assert len(lines) == 1 and lines[0].data.shape == (10, 2)
+    k = [c.type for c in mesh.cells].index("line")
+    assert mesh.cell_data["element"][k].tolist() == list(range(1, 11))
+    assert np.all(mesh.cell_data["alive"][k] == 1)
