@@ -104,3 +104,46 @@ def test_axial_frequency(tmp_path, elform):
     assert f == pytest.approx(C / (4.0 * L), rel=0.01)
     # rho A L: the masses of the deck
     assert run.state.node_mass[: n + 1].sum() == pytest.approx(RHO * A * L, rel=1e-12)
+
+
+@pytest.mark.parametrize("elform", [2, 1])
+def test_flat_section_orientation(tmp_path, elform):
+    """A 10 x 5 mm section with N3 along +y (s = y, t = z): a tip load along z
+    bends it about s (ISS = 10 * 5^3 / 12), along y about t (ITT = 5 * 10^3 / 12).
+    Static deflections (relaxed as above) against P L^3 / 3 E I: 2 %."""
+    n, b, h = 10, 10.0, 5.0
+    w1 = 2.0 * math.pi * F1
+    for axis, inertia in ((2, b * h ** 3 / 12.0), (1, h * b ** 3 / 12.0)):
+        run = engine(tmp_path, n=n, elform=elform, width=b, height=h)
+        load = np.zeros(3)
+        load[axis] = P
+        add_load(run, n, force=lambda t, f=load: f * smooth(t, 2.0), damping=2.0 * w1)
+        run_until(run, 10.0)
+        tip = run.state.x[n] - run.model.node_x0[n]
+        assert tip[axis] / (P * L ** 3 / (3.0 * E * inertia)) == pytest.approx(1.0, abs=0.02)
+        assert abs(tip[3 - axis]) < 1e-6 * abs(tip[axis])
+
+
+@pytest.mark.parametrize("elform", [2, 1])
+def test_torsion(tmp_path, elform):
+    """End torque T: tip twist T L / (G J), with J the card's torsion constant
+    (ELFORM 2: St Venant's 0.1406 b^4 for the square) or SHRF times the polar
+    moment (ELFORM 1: the integrated torsion, no warping). Relaxed statically
+    (damping at the first torsional frequency); 1 %."""
+    n = 10
+    run = engine(tmp_path, n=n, elform=elform)
+    g = E / (2.0 * 1.3)
+    rt = run.plan.elements[0]
+    gj = rt.sec[1] if elform == 2 else rt.sec[1] * rt.torsion  # G J, or SHRF G (ISS + ITT)
+    torque = 1.0e-2
+    # first torsional frequency of the clamped bar with the lumped inertia
+    j_per_length = float(run.state.node_rot_inertia[1]) / (L / n)
+    w_t = 0.5 * math.pi * math.sqrt(gj / (j_per_length * L * L))
+    add_load(run, n, moment=lambda t: np.array([torque * smooth(t, 3.0), 0.0, 0.0]),
+             damping=2.0 * w_t)
+    t_end = 3.0 + 12.0 / w_t
+    run_until(run, t_end)
+    twist = float(rt.nat[:, 1].sum())
+    assert twist == pytest.approx(torque * L / gj, rel=0.01)
+    assert gj == pytest.approx(g * (0.1406 * 5.0 ** 4 if elform == 2
+                                    else 5.0 / 6.0 * 5.0 ** 4 / 6.0), rel=2e-3)
