@@ -18,8 +18,9 @@ normal to it in the plane of e1 and the mean of the two nodes' rotated s axes
 A rigid motion leaves them zero exactly (objectivity). Their work-conjugate
 *natural forces* ``F = (N, T, M1s, M1t, M2s, M2t)`` come from the section law;
 the nodal forces and moments follow from the virtual work of ``F . dd`` with
-the variation of the chord (shear ``(M1 + M2) / l`` from equilibrium), so the
-internal force is consistent with the co-rotational geometry at any rotation.
+the variation of the chord (shear ``(M1 + M2) / l`` from equilibrium) and of
+the frame's twist, so the internal force is the exact gradient of the stored
+energy at any rotation.
 
 Section laws:
 
@@ -165,6 +166,7 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
     imin = -1
     de_total = 0.0
     e = np.empty((3, 3))
+    qs = np.empty((2, 3))
     for i in range(ne):
         if not alive[i]:
             dte[i] = np.inf
@@ -180,17 +182,13 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
         ln = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
         e[0, 0], e[0, 1], e[0, 2] = d0 / ln, d1 / ln, d2 / ln
         # mean rotated s axis of the two nodes
-        q0 = q1 = q2 = 0.0
         for a in range(2):
             for c in range(3):
-                v = triad[i, a, c, 0] * frame0[i, 1, 0] + triad[i, a, c, 1] * frame0[i, 1, 1] \
-                    + triad[i, a, c, 2] * frame0[i, 1, 2]
-                if c == 0:
-                    q0 += v
-                elif c == 1:
-                    q1 += v
-                else:
-                    q2 += v
+                qs[a, c] = triad[i, a, c, 0] * frame0[i, 1, 0] \
+                    + triad[i, a, c, 1] * frame0[i, 1, 1] + triad[i, a, c, 2] * frame0[i, 1, 2]
+        q0 = qs[0, 0] + qs[1, 0]
+        q1 = qs[0, 1] + qs[1, 1]
+        q2 = qs[0, 2] + qs[1, 2]
         t0 = e[0, 1] * q2 - e[0, 2] * q1
         t1 = e[0, 2] * q0 - e[0, 0] * q2
         t2 = e[0, 0] * q1 - e[0, 1] * q0
@@ -279,15 +277,23 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
         # (-T, M1s, M1t), (T, M2s, M2t) through Lambda(theta_a)^T (_spin_moment)
         a0, a1, a2 = _spin_moment(rot[i, 0], rot[i, 1], rot[i, 2], -fT, m1s, m1t)
         b0, b1, b2 = _spin_moment(rot[i, 3], rot[i, 4], rot[i, 5], fT, m2s, m2t)
+        # the frame's twist: d omega_r = (sum_a d omega_a . (q_a x e3)
+        #   - (q . e1) (du2 - du1) . e3 / l) / |q_perp|, q_a the rotated s axes
         sy = (a1 + b1) / ln
         sz = (a2 + b2) / ln
-        tw = 0.5 * (a0 + b0)
+        sr = (a0 + b0) / tn
+        qe1 = q0 * e[0, 0] + q1 * e[0, 1] + q2 * e[0, 2]
+        st = sy + sr * qe1 / ln
         for c in range(3):
-            fc = fN * e[0, c] + sy * e[2, c] - sz * e[1, c]
+            fc = fN * e[0, c] + st * e[2, c] - sz * e[1, c]
             f[n2, c] -= fc
             f[n1, c] += fc
-            mom[n1, c] -= (a0 - tw) * e[0, c] + a1 * e[1, c] + a2 * e[2, c]
-            mom[n2, c] -= (b0 - tw) * e[0, c] + b1 * e[1, c] + b2 * e[2, c]
+            c1 = (c + 1) % 3
+            c2 = (c + 2) % 3
+            x1 = qs[0, c1] * e[2, c2] - qs[0, c2] * e[2, c1]  # (q_1 x e3)_c
+            x2 = qs[1, c1] * e[2, c2] - qs[1, c2] * e[2, c1]
+            mom[n1, c] -= a0 * e[0, c] + a1 * e[1, c] + a2 * e[2, c] - sr * x1
+            mom[n2, c] -= b0 * e[0, c] + b1 * e[1, c] + b2 * e[2, c] - sr * x2
         d = dt0[i] * ln / L
         dte[i] = d
         if d < dmin:
