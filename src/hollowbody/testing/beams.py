@@ -29,7 +29,7 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
                     nu: float = 0.3, rho: float = 7.85e-6, sigy: float = 0.0,
                     etan: float = 0.0, end_time: float = 1.0, tssfac: float = 0.9,
                     orientation: bool = True, shear_area: float | None = None,
-                    gauss_rule: tuple[int, int] | None = None) -> str:
+                    gauss_rule: tuple[int, int] | None = None, clamped: bool = True) -> str:
     """Keyword text of a clamped beam along +x (nodes 1..n+1, elements 1..n).
 
     Section: rectangle ``width`` (s, along global y) x ``height`` (t, along z),
@@ -39,6 +39,7 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
     ETAN (BETA 1, isotropic), else *MAT_ELASTIC. orientation: N3 node above
     the root (node n+2 at y = 10), else no N3. gauss_rule (n_s, n_t): ELFORM 1
     with an *INTEGRATION_BEAM rule (IRID 1) of n_s x n_t Gauss points.
+    clamped: node 1 fixed (else the beam is free).
     """
     lines = ["*KEYWORD", "*TITLE", "beam cantilever", "*CONTROL_TERMINATION",
              _f(end_time), "*CONTROL_TIMESTEP", _f(0.0) + _f(tssfac), "*NODE"]
@@ -77,7 +78,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
             [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(1.0)])]
     else:
         lines += ["*MAT_ELASTIC", f"{1:10d}{_f(rho)}{_f(e_mod)}{_f(nu)}"]
-    lines += ["*BOUNDARY_SPC_NODE", f"{1:10d}{0:10d}" + f"{1:10d}" * 6]
+    if clamped:
+        lines += ["*BOUNDARY_SPC_NODE", f"{1:10d}{0:10d}" + f"{1:10d}" * 6]
     if orientation:
         lines += ["*BOUNDARY_SPC_NODE", f"{n + 2:10d}{0:10d}" + f"{1:10d}" * 6]
     lines.append("*END")
