@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 import pytest
-from beam_runs import F1, E, L, add_load, engine, run_until, smooth
+from beam_runs import F1, E, L, add_load, energy_sum, engine, run_until, smooth
 from scipy.spatial.transform import Rotation
 
 from hollowbody.elements.beam_group import beam_runtimes
