@@ -80,6 +80,9 @@ class BeamGroupRuntime:
                             f"material {material.mid} is plastic (use ELFORM 1 with "
                             "cross-section integration)", src.file, src.line, "SECTION_BEAM")
         self.material = mat
+        if mat.fail > 0.0:
+            self.warnings.append(f"part {self.pid}: FAIL of material {material.mid} is not "
+                                 "applied to beams (they are not eroded)")
         e_mod, nu, rho = mat.e_mod, mat.nu, mat.density
         g_mod = 0.5 * e_mod / (1.0 + nu)
         p = section.params
@@ -129,6 +132,9 @@ class BeamGroupRuntime:
         self.wave_speed = float(np.sqrt(e_mod / rho))
         self.hard_x = np.ascontiguousarray(mat.hard_x, dtype=np.float64)
         self.hard_y = np.ascontiguousarray(mat.hard_y, dtype=np.float64)
+        self.params = mat.params()  # packed, for the strain-rate factor
+        self.rate_x = np.ascontiguousarray(mat.rate_x, dtype=np.float64)
+        self.rate_y = np.ascontiguousarray(mat.rate_y, dtype=np.float64)
         npt = self.pts.shape[0]
         # state
         self.alive = np.ones(e, dtype=bool)
@@ -194,7 +200,8 @@ class BeamGroupRuntime:
         d, i, de = beam_forces(x, w, float(dt), f, moment, self.conn, self.alive, self.frame0,
                                self.length0, self.triad, self.nat, self.force, self.resultants,
                                self.law, self.sec, self.pts, self.sig, self.back, self.eps_p,
-                               self.hard_x, self.hard_y, self.dt0, self._dte, self._ework,
+                               self.hard_x, self.hard_y, self.params, self.rate_x,
+                               self.rate_y, self.dt0, self._dte, self._ework,
                                self._rot)
         self.internal_energy += de
         self.stress[:, 0] = self.resultants[:, 0] / self.area

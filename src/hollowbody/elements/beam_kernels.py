@@ -52,6 +52,7 @@ import numpy as np
 from numba import njit
 
 from hollowbody.materials.beam_plasticity import beam_point_update
+from hollowbody.materials.plane_stress_plasticity import P_CS_C, P_RATE_CURVE, rate_factor
 
 LAW_RESULTANT = 0
 LAW_INTEGRATED = 1
@@ -144,8 +145,8 @@ def _spin_moment(t0: float, t1: float, t2: float, m0: float, m1: float, m2: floa
 
 @njit(cache=True, error_model="numpy")
 def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, nat, force,
-                res, law: int, sec, pts, sig, back, eps_p, hard_x, hard_y, dt0, dte,
-                e_work, rot) -> tuple[float, int, float]:
+                res, law: int, sec, pts, sig, back, eps_p, hard_x, hard_y, mp, rate_x,
+                rate_y, dt0, dte, e_work, rot) -> tuple[float, int, float]:
     """Update the beams of a group and add their nodal forces and moments.
 
     x (n, 3) mm at t^{n+1}; w (n, 3) rad/ms at t^{n+1/2}; dt ms (0: forces of
@@ -156,7 +157,10 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
     res (e, 6) resultants (N, Q_s, Q_t kN; T, M_s, M_t kN mm) at the middle;
     law LAW_RESULTANT / LAW_INTEGRATED; sec (N_SEC,) packed section; pts (p, 3)
     stress points (s, t, weight); sig, back (e, p, 3) GPa; eps_p (e, p);
-    hard_x, hard_y hardening table; dt0 (e,) ms initial critical steps; dte (e,)
+    hard_x, hard_y hardening table; mp (N_PARAMS,) the material's packed
+    parameters and rate_x, rate_y its rate curve (strain-rate scaling of the
+    yield stress, :func:`~hollowbody.materials.plane_stress_plasticity.rate_factor`);
+    dt0 (e,) ms initial critical steps; dte (e,)
     ms out; e_work (e,) J scratch; rot (e, 6) scratch. Returns (smallest
     critical step ms, its element or -1, internal energy increment J).
     """
@@ -230,13 +234,21 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
             dgs = -0.5 * ((dn3 - nat[i, 3]) + (dn5 - nat[i, 5]))
             dgt = 0.5 * ((dn2 - nat[i, 2]) + (dn4 - nat[i, 4]))
             rn = rqs = rqt = rt = rms = rmt = 0.0
+            rated = sec[S_PLASTIC] > 0.0 and dt > 0.0 and (mp[P_CS_C] > 0.0
+                                                           or mp[P_RATE_CURVE] > 0.0)
             for k in range(np_):
                 ps_ = pts[k, 0]
                 pt_ = pts[k, 1]
                 wk = pts[k, 2]
-                beam_point_update(sig, back, i, k, eps_p, de0 - ps_ * dkt + pt_ * dks,
-                                  dgs - pt_ * dkr, dgt + ps_ * dkr, sec[S_E], sec[S_GS],
-                                  sec[S_HK], sec[S_PLASTIC] > 0.0, hard_x, hard_y)
+                pe = de0 - ps_ * dkt + pt_ * dks
+                pgs = dgs - pt_ * dkr
+                pgt = dgt + ps_ * dkr
+                rf = 1.0
+                if rated:  # von Mises rate of (axial, -axial/2, -axial/2, shears)
+                    rf = rate_factor(mp, rate_x, rate_y, pe / dt, -0.5 * pe / dt,
+                                     math.sqrt(pgs * pgs + pgt * pgt) / dt)
+                beam_point_update(sig, back, i, k, eps_p, pe, pgs, pgt, sec[S_E], sec[S_GS],
+                                  sec[S_HK], sec[S_PLASTIC] > 0.0, hard_x, hard_y, rf)
                 s0 = sig[i, k, 0] * wk
                 rn += s0
                 rms += s0 * pt_

@@ -29,7 +29,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
                     nu: float = 0.3, rho: float = 7.85e-6, sigy: float = 0.0,
                     etan: float = 0.0, end_time: float = 1.0, tssfac: float = 0.9,
                     orientation: bool = True, shear_area: float | None = None,
-                    gauss_rule: tuple[int, int] | None = None, clamped: bool = True) -> str:
+                    gauss_rule: tuple[int, int] | None = None, clamped: bool = True,
+                    src: float = 0.0, srp: float = 0.0) -> str:
     """Keyword text of a clamped beam along +x (nodes 1..n+1, elements 1..n).
 
     Section: rectangle ``width`` (s, along global y) x ``height`` (t, along z),
@@ -39,7 +40,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
     ETAN (BETA 1, isotropic), else *MAT_ELASTIC. orientation: N3 node above
     the root (node n+2 at y = 10), else no N3. gauss_rule (n_s, n_t): ELFORM 1
     with an *INTEGRATION_BEAM rule (IRID 1) of n_s x n_t Gauss points.
-    clamped: node 1 fixed (else the beam is free).
+    clamped: node 1 fixed (else the beam is free). src, srp: Cowper-Symonds
+    constants of the *MAT_PLASTIC_KINEMATIC (1/ms; 0 = none).
     """
     lines = ["*KEYWORD", "*TITLE", "beam cantilever", "*CONTROL_TERMINATION",
              _f(end_time), "*CONTROL_TIMESTEP", _f(0.0) + _f(tssfac), "*NODE"]
@@ -75,7 +77,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
                     lines.append(f"{a:10.7f}{b:10.7f}{0.25 * wa * wb:10.7f}")
     if sigy > 0.0:
         lines += ["*MAT_PLASTIC_KINEMATIC", "".join(
-            [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(1.0)])]
+            [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(1.0)]),
+            _f(src) + _f(srp)]
     else:
         lines += ["*MAT_ELASTIC", f"{1:10d}{_f(rho)}{_f(e_mod)}{_f(nu)}"]
     if clamped:
@@ -89,7 +92,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
 class EndLoad:
     """Force term: ``force(t)`` (3,) kN and ``moment(t)`` (3,) kN mm on node ``node``
     (a 0-based index), and damping ``-damping m v`` (1/ms) on every node; or
-    ``spin(t)`` (3,) rad/ms: the node's rotational velocity imposed.
+    ``spin(t)`` (3,) rad/ms / ``velocity(t)`` (3,) mm/ms: the node's rotational /
+    translational velocity imposed.
 
     ``external_work`` (J): the load's work (trapezoid of force times the
     displacement increments); ``damping_work`` (J): energy taken by damping.
@@ -99,10 +103,11 @@ class EndLoad:
 
     def __init__(self, node: int, force: Callable[[float], np.ndarray] | None = None,
                  moment: Callable[[float], np.ndarray] | None = None,
-                 damping: float = 0.0, spin: Callable[[float], np.ndarray] | None = None
-                 ) -> None:
+                 damping: float = 0.0, spin: Callable[[float], np.ndarray] | None = None,
+                 velocity: Callable[[float], np.ndarray] | None = None) -> None:
         self.node = int(node)
         self.spin = spin
+        self.velocity = velocity
         self.force = force
         self.moment = moment
         self.damping = float(damping)
@@ -115,6 +120,8 @@ class EndLoad:
         """With ``spin``: the node's rotational velocity (rad/ms) imposed at t + dt / 2."""
         if self.spin is not None:
             state.w[self.node] = np.asarray(self.spin(state.t + 0.5 * dt), float)
+        if self.velocity is not None:
+            state.v[self.node] = np.asarray(self.velocity(state.t + 0.5 * dt), float)
 
     def add_forces(self, state, dt: float) -> tuple[float, int, int]:  # noqa: ANN001
         """Add the load (and damping) at t^{n+1}; its work over the last step."""

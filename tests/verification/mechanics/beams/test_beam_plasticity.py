@@ -92,3 +92,21 @@ def test_elastic_unloading_and_dissipation(tmp_path):
     assert (m4 - m3) / (k4 - k3) == pytest.approx(E * i_s, rel=1e-6)
     assert rt.plastic_strain.max() > 0.0
     assert rt.internal_energy > 0.0
+
+
+@pytest.mark.parametrize("speed", [0.5, 2.0])
+def test_cowper_symonds_rate_scaling(tmp_path, speed):
+    """One ELFORM 1 element pulled at constant speed v (end velocity imposed):
+    uniform strain rate v / L; elastic-perfectly-plastic *MAT_PLASTIC_KINEMATIC
+    with SRC = 0.04 /ms, SRP = 5: the axial force after yield is
+    A sigma_y (1 + (v / (L SRC))^(1/5)) (0.5 %; the element's own force, so
+    the bar's inertia does not enter)."""
+    src, srp = 0.04, 5.0
+    run = engine(tmp_path, n=1, elform=1, sigy=SIGY, etan=0.0, src=src, srp=srp)
+    add_load(run, 1, velocity=lambda t: np.array([speed, 0.0, 0.0]))
+    rate = speed / L
+    run_until(run, 3.0 * SIGY * 2.5 / (E * rate))  # well past yield (rate factor < 2.5)
+    rt = run.plan.elements[0]
+    factor = 1.0 + (rate / src) ** (1.0 / srp)
+    assert rt.resultants[0, 0] / (25.0 * SIGY * factor) == pytest.approx(1.0, abs=0.005)
+    assert rt.plastic_strain[0] > 0.0
