@@ -71,52 +71,72 @@ def section_def(s: SectionBeam) -> SectionDef:
 
 
 def build(b, model: Model) -> None:  # noqa: ANN001 - builder.Builder
-    """*ELEMENT_BEAM -> ``model.beam_groups`` (one group per part)."""
+    """*ELEMENT_BEAM -> ``model.beam_groups`` (one group per part), vectorised over
+    all rows; a DeckError names the row's file line."""
     items = b.of(ElementBeam)
     if not items:
         return
-    by_pid: dict[int, list] = {}
-    seen: set[int] = set()
-    for it in items:
-        if it.eid in seen:
-            raise item_error(it, f"beam element id {it.eid} is defined twice")
-        seen.add(it.eid)
-        part = model.parts.get(it.pid)
+    ids = np.concatenate([it.ids for it in items])
+    pids = np.concatenate([it.pids for it in items])
+    conn_ids = np.concatenate([it.conn for it in items])
+    rel = np.concatenate([it.releases for it in items])
+    owner = np.concatenate([np.full(it.ids.size, k) for k, it in enumerate(items)])
+    first = np.concatenate([[0], np.cumsum([it.ids.size for it in items])])
+
+    def fail(r: int, message: str) -> DeckError:
+        it = items[int(owner[r])]
+        return item_error(it, message, it.line_of(int(r - first[owner[r]])))
+
+    order = np.argsort(ids, kind="stable")
+    dup = np.nonzero(np.diff(ids[order]) == 0)[0]
+    if dup.size:
+        raise fail(int(order[dup[0] + 1]), f"beam element id {ids[order[dup[0]]]} is defined "
+                   "twice")
+    for pid in np.unique(pids).tolist():
+        r = int(np.nonzero(pids == pid)[0][0])
+        part = model.parts.get(pid)
         if part is None:
-            raise item_error(it, f"beam element {it.eid} refers to part {it.pid} which is not "
-                             "defined")
+            raise fail(r, f"beam element {ids[r]} refers to part {pid} which is not defined")
         sec = model.sections.get(part.secid)
         if sec is None or sec.kind != "beam":
             kind = "no section" if sec is None else f"a {sec.kind} section"
-            raise item_error(it, f"beam element {it.eid}: its part {it.pid} has {kind} "
-                             f"(section {part.secid}), not a *SECTION_BEAM")
-        if it.rt1 or it.rr1 or it.rt2 or it.rr2:
-            raise item_error(it, f"beam element {it.eid}: release codes RT1/RR1/RT2/RR2 are "
-                             "not supported (give 0; model a hinge with a joint instead)")
-        if it.n1 == it.n2:
-            raise item_error(it, f"beam element {it.eid}: N1 and N2 are the same node")
-        ids = [it.n1, it.n2] + ([it.n3] if it.n3 else [])
-        idx = b.node_list(np.asarray(ids, dtype=np.int64), it, f"beam element {it.eid}")
-        row = [int(idx[0]), int(idx[1]), int(idx[2]) if it.n3 else -1]
-        frames, length, bad = beam_frames(np.asarray([row]), model.node_x0)
-        if bad[0]:
-            what = ("N1 and N2 are at the same place" if length[0] <= 0.0 else
-                    f"orientation node N3 {it.n3} is collinear with N1-N2")
-            raise item_error(it, f"beam element {it.eid}: {what}")
-        by_pid.setdefault(it.pid, []).append((it.eid, row))
+            raise fail(r, f"beam element {ids[r]}: its part {pid} has {kind} "
+                       f"(section {part.secid}), not a *SECTION_BEAM")
+    bad = np.nonzero(rel.any(axis=1))[0]
+    if bad.size:
+        raise fail(int(bad[0]), f"beam element {ids[bad[0]]}: release codes RT1/RR1/RT2/RR2 "
+                   "are not supported (give 0; model a hinge with a joint instead)")
+    bad = np.nonzero((conn_ids[:, 0] == 0) | (conn_ids[:, 1] == 0))[0]
+    if bad.size:
+        raise fail(int(bad[0]), f"beam element {ids[bad[0]]}: N1 and N2 must be given")
+    bad = np.nonzero(conn_ids[:, 0] == conn_ids[:, 1])[0]
+    if bad.size:
+        raise fail(int(bad[0]), f"beam element {ids[bad[0]]}: N1 and N2 are the same node")
+    idx, missing = b.index(conn_ids)
+    missing &= conn_ids != 0
+    if missing.any():
+        r, k = (int(v[0]) for v in np.nonzero(missing))
+        raise fail(r, f"beam element {ids[r]} refers to node {conn_ids[r, k]} which is not "
+                   "defined")
+    conn = np.where(conn_ids == 0, -1, idx).astype(np.int32)
+    _frames, length, degenerate = beam_frames(conn, model.node_x0)
+    if degenerate.any():
+        r = int(np.nonzero(degenerate)[0][0])
+        what = ("N1 and N2 are at the same place" if length[r] <= 0.0 else
+                f"orientation node N3 {conn_ids[r, 2]} is collinear with N1-N2")
+        raise fail(r, f"beam element {ids[r]}: {what}")
     rules = _user_rules(b, model)
-    for pid in sorted(by_pid):
-        rows = by_pid[pid]
+    for pid in np.unique(pids).tolist():
+        sel = np.nonzero(pids == pid)[0]
         sec = model.sections[model.parts[pid].secid]
         irid = -int(sec.params.get("QR", 2)) if sec.elform == 1 else 0
         if irid > 0 and irid not in rules:
             raise DeckError(f"section {sec.secid}: integration rule IRID {irid} "
                             "(*INTEGRATION_BEAM) is not defined", sec.source.file,
                             sec.source.line, "SECTION_BEAM")
-        model.beam_groups.append(BeamGroup(
-            pid=pid, elem_ids=np.asarray([r[0] for r in rows], dtype=np.int64),
-            conn=np.asarray([r[1] for r in rows], dtype=np.int32).reshape(-1, 3),
-            rule=rules[irid] if irid > 0 else None))
+        model.beam_groups.append(BeamGroup(pid=pid, elem_ids=ids[sel].copy(),
+                                           conn=conn[sel].copy(),
+                                           rule=rules[irid] if irid > 0 else None))
 
 
 def _user_rules(b, model: Model) -> dict[int, np.ndarray]:  # noqa: ANN001 - builder.Builder

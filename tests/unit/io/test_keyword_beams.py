@@ -61,9 +61,11 @@ def test_cards_and_defaults(tmp_path):
         (1, 2, 25.0, 52.08, 52.08, 88.02, 20.83)
     assert s1.title == "resultant section" and s1.shrf == 1.0 and s1.qr == 2
     assert (s2.elform, s2.shrf, s2.qr, s2.nsm, s2.ts1, s2.tt2) == (1, 0.833, -7, 1e-6, 5.0, 4.0)
-    e1, e2 = deck.of_type(ElementBeam)
-    assert (e1.eid, e1.pid, e1.n1, e1.n2, e1.n3, e1.local) == (1, 1, 1, 2, 4, 2)
-    assert e2.n3 == 0
+    (el,) = deck.of_type(ElementBeam)
+    assert el.ids.tolist() == [1, 2] and el.pids.tolist() == [1, 2]
+    assert el.conn.tolist() == [[1, 2, 4], [2, 3, 0]]
+    assert el.local.tolist() == [2, 2] and not el.releases.any()
+    assert el.row_lines.tolist() == [27, 28]
     (rule,) = deck.of_type(IntegrationBeam)
     assert rule.irid == 7 and rule.points == [[-0.5, 0.0, 0.5, 0.0], [0.5, 0.0, 0.5, 0.0]]
 
@@ -136,6 +138,8 @@ def test_bad_input_names_file_line_keyword(tmp_path, old, new, message, keyword)
     assert e.keyword and keyword in e.keyword
     line = path.read_text().splitlines()[e.line - 1]
     assert line.strip()  # the line named is a card of the deck
+    if keyword == "ELEMENT_BEAM":  # the element's own row
+        assert line.split()[0] == new.split()[0]
 
 
 def test_missing_section_card(tmp_path):

@@ -12,8 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from hollowbody.io.keyword.base import Block, Cursor, SimpleKeyword, register
-from hollowbody.io.keyword.cards import Field, format_card
+import numpy as np
+
+from hollowbody.io.keyword import bulk
+from hollowbody.io.keyword.base import Block, Cursor, KeywordItem, SimpleKeyword, register
+from hollowbody.io.keyword.cards import Field, field_width, format_card
 
 #: ELFORM values whose second card is the integrated-section card (TS1 ...).
 INTEGRATED_ELFORMS = (1, 11)
@@ -71,29 +74,67 @@ class SectionBeam(SimpleKeyword):
 
 
 @register
-@dataclass(kw_only=True)
-class ElementBeam(SimpleKeyword):
-    """*ELEMENT_BEAM: EID PID N1 N2 N3 RT1 RR1 RT2 RR2 LOCAL (8-column fields).
+@dataclass(kw_only=True, eq=False)
+class ElementBeam(KeywordItem):
+    """*ELEMENT_BEAM: rows EID PID N1 N2 N3 RT1 RR1 RT2 RR2 LOCAL (8-column fields).
 
-    N3 (orientation node) 0 = none; RT/RR release codes, LOCAL 2 = releases in
-    the local system (default).
+    Arrays (k rows): ids, pids; conn (k, 3) node ids N1 N2 N3 (N3 0 = none);
+    releases (k, 4) RT1 RR1 RT2 RR2; local (k,) (blank = 2, releases in the
+    local system); row_lines (k,) the file line of each row.
     """
 
-    eid: int = 0
-    pid: int = 0
-    n1: int = 0
-    n2: int = 0
-    n3: int = 0
-    rt1: int = 0
-    rr1: int = 0
-    rt2: int = 0
-    rr2: int = 0
-    local: int = 2
+    ids: np.ndarray
+    pids: np.ndarray
+    conn: np.ndarray
+    releases: np.ndarray | None = None
+    local: np.ndarray | None = None
+    row_lines: np.ndarray | None = field(default=None, repr=False)
 
     KEYWORD: ClassVar[str] = "ELEMENT_BEAM"
-    CARDS: ClassVar[tuple[str, ...]] = (
-        "eid:8 pid:8 n1:8 n2:8 n3:8 rt1:8 rr1:8 rt2:8 rr2:8 local:8",)
-    REPEAT: ClassVar[bool] = True
+    _NAMES: ClassVar[list[str]] = ["eid", "pid", "n1", "n2", "n3", "rt1", "rr1", "rt2",
+                                   "rr2", "local"]
+
+    def __post_init__(self) -> None:
+        self.ids = np.asarray(self.ids, dtype=np.int64).reshape(-1)
+        k = self.ids.shape[0]
+        self.pids = np.broadcast_to(np.asarray(self.pids, dtype=np.int64), (k,)).copy()
+        self.conn = np.asarray(self.conn, dtype=np.int64).reshape(k, 3)
+        self.releases = np.zeros((k, 4), np.int64) if self.releases is None else \
+            np.asarray(self.releases, dtype=np.int64).reshape(k, 4)
+        self.local = np.full(k, 2, np.int64) if self.local is None else \
+            np.broadcast_to(np.asarray(self.local, dtype=np.int64), (k,)).copy()
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, ElementBeam):
+            return NotImplemented
+        return all(np.array_equal(getattr(self, a), getattr(other, a))
+                   for a in ("ids", "pids", "conn", "releases", "local"))
+
+    def line_of(self, row: int) -> int:
+        """File line of row ``row`` (the block's line when unknown)."""
+        if self.row_lines is not None and len(self.row_lines) > row:
+            return int(self.row_lines[row])
+        return self.source.line
+
+    @classmethod
+    def read(cls, block: Block) -> list[KeywordItem]:
+        w = field_width(8, block.fmt)
+        t = bulk.row_table(block, 10 * w)
+        vals = bulk.parse_ints(t, 0, w, 10, cls._NAMES, 0)
+        local = vals[:, 9].copy()
+        local[local == 0] = 2
+        line = int(t.lines[0]) if t.n else block.line
+        return [cls(ids=vals[:, 0], pids=vals[:, 1], conn=vals[:, 2:5], releases=vals[:, 5:9],
+                    local=local, row_lines=t.lines, source=block.source(line))]
+
+    def to_lines(self, fmt: str = "standard") -> list[str]:
+        if fmt == "standard" and int(np.abs(np.column_stack(
+                [self.ids, self.pids, self.conn])).max(initial=0)) >= 10 ** 8:
+            fmt = "long"
+        w = field_width(8, fmt)
+        rows = bulk.int_rows(np.column_stack([self.ids, self.pids, self.conn, self.releases,
+                                              self.local]), w)
+        return ["*ELEMENT_BEAM" + {"long": " +", "i10": " %"}.get(fmt, ""), *rows]
 
 
 @register
