@@ -163,3 +163,13 @@ def test_part_without_beam_section(tmp_path):
     with pytest.raises(DeckError) as err:
         build_model(read_deck(_write(tmp_path, text)))
     assert "not a *SECTION_BEAM" in str(err.value)
+
+
+def test_cli_exit_code_two_without_traceback(tmp_path, capsys):
+    from hollowbody.cli.main import main as cli_main
+
+    path = _write(tmp_path, DECK.replace("       2       2       2       3\n",
+                                         "       2       2       2      99\n"))
+    assert cli_main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "beam.k:28" in err and "ELEMENT_BEAM" in err and "Traceback" not in err
