@@ -11,19 +11,20 @@ Local axes (r, s, t) of :mod:`hollowbody.model.beams`; a stress point sits at
   through the wall in the radius (weight ``r dr dtheta``): QR 1: 8 x 1,
   QR 2: 8 x 2, QR >= 3: 16 x 3.
 
-**Nodal rotational inertia.** Each node of a beam gets, per axis,
-``J = m_node * max(L^2 / 4, (ISS + ITT) / A)`` (m_node = half the beam's mass
-with NSM). ``(ISS + ITT) / A`` is the physical polar inertia of the section
-per unit mass; ``L^2 / 4`` scales it up (this project's rule; explicit codes
-scale beam rotary inertia for the same reason) so that the rotational modes
-of the element are never faster than its axial wave: with it, the element's exact highest frequency (lumped masses, the
-element's elastic stiffness) gives a critical step of at least ``L / c`` for
-every aspect ratio when the beam has shear flexibility (ELFORM 1; ELFORM 2
-with SA > 0), and for L >= 2 h for the Euler-Bernoulli resultant beam (SA = 0),
-whose stubby elements are stiffer in bending (12 EI / L^3) than axially
-(checked by ``tests/unit/elements/test_beam_section.py``). The step of each
-element is computed exactly at set-up (:func:`element_step`) and scaled with
-the current length in the cycle.
+**Nodal rotational inertia.** Each node of a beam gets, per axis, ``J = m_node
+* max(L^2 / 4, (ISS + ITT) / A)`` (m_node = half the beam's mass with NSM).
+``(ISS + ITT) / A`` is the physical polar inertia of the section per unit
+mass; ``L^2 / 4`` scales it up (this project's rule; explicit codes scale beam
+rotary inertia for the same reason) so that the rotational modes of the
+element are never faster than its axial wave: with it, the element's exact
+highest frequency (lumped masses, the element's elastic stiffness) gives a
+critical step of at least ``L / c`` for every aspect ratio when the beam has
+shear flexibility (ELFORM 1; ELFORM 2 with SA > 0), and for L >= 2 h for the
+Euler-Bernoulli resultant beam (SA = 0), whose stubby elements are stiffer in
+bending (12 EI / L^3) than axially (checked by
+``tests/unit/elements/test_beam_section.py``). The step of each element is
+computed exactly at set-up (:func:`element_step`) and scaled with the current
+length in the cycle.
 """
 
 from __future__ import annotations
