@@ -3,10 +3,10 @@
 A :class:`BeamGroup` holds the beams of one part. The beam's local frame
 (r, s, t): r from N1 to N2; s in the plane of N1, N2 and the orientation node
 N3, normal to r, on N3's side; t = r x s. Without N3 the s axis is the global
-axis least aligned with r, made normal to r (global Y for beams along X, the
-global Z for beams along Y, the global Y again for beams along Z; in general
-the axis with the smallest ``|r . e_i|``, the first on ties) — a fixed,
-documented default: give N3 where the section is not symmetric.
+axis least aligned with r, made normal to r (the axis with the smallest
+``|r . e_i|``, ties going to Y, then X: global Y for beams along X or Z,
+global X for beams along Y) - a fixed, documented default: give N3 where the
+section is not symmetric.
 """
 
 from __future__ import annotations

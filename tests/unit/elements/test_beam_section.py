@@ -90,3 +90,12 @@ def test_frames_with_and_without_orientation_node():
     assert np.allclose(f[2, 1], [0, 1, 0])  # along z: s = global y
     assert bad.tolist() == [False, False, False, True]  # N3 on the axis
     assert length.tolist() == [10.0, 10.0, 10.0, 10.0]
+
+
+def test_default_orientation_of_axis_aligned_beams():
+    """Without N3: s = global Y for beams along X and Z, global X along Y."""
+    x = np.array([[0.0, 0, 0], [5, 0, 0], [0, 5, 0], [0, 0, 5]])
+    f, _, bad = beam_frames(np.array([[0, 1, -1], [0, 2, -1], [0, 3, -1]]), x)
+    assert not bad.any()
+    assert np.allclose(f[:, 1], [[0, 1, 0], [1, 0, 0], [0, 1, 0]])
+    assert np.allclose(np.einsum("ij,ij->i", f[:, 0], f[:, 1]), 0.0)
