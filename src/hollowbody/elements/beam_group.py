@@ -153,7 +153,6 @@ class BeamGroupRuntime:
         self._dte = np.full(e, np.inf)
         self._ework = np.zeros(e)
         self._rot = np.zeros((e, 6))
-        self._wzero = np.zeros((0, 3))
 
     # -- set-up helpers -----------------------------------------------------------
     def _spread(self, n_nodes: int, values: np.ndarray) -> np.ndarray:
