@@ -48,15 +48,18 @@ class BeamGroupRuntime:
     in the local frame; stress (e, 6) GPa: the mean section stress in the local
     (r, s, t) frame, Voigt order (N/A, 0, 0, Q_s/A, 0, Q_t/A); plastic_strain
     (e,) largest effective plastic strain over the points; internal_energy,
-    hourglass_energy (0) J.
+    hourglass_energy (0) J; failed: indices of beams deleted by material
+    failure (FAIL of the material: a stress point whose effective plastic
+    strain reaches it carries no stress from then on, the beam goes when all
+    its points have failed).
     """
 
     family = "beams"
     rotational = True
     #: attributes that change in time (restored in place or by assignment)
     STATE_FIELDS: tuple[str, ...] = ("alive", "triad", "nat", "force", "resultants", "stress",
-                                     "sig", "back", "eps_p", "plastic_strain", "_dte",
-                                     "internal_energy", "hourglass_energy")
+                                     "sig", "back", "eps_p", "pfail", "plastic_strain",
+                                     "_dte", "internal_energy", "hourglass_energy", "failed")
 
     def __init__(self, group: BeamGroup, material: MaterialDef, section: SectionDef,
                  curves: dict[int, Curve], node_x0: np.ndarray) -> None:
@@ -80,9 +83,6 @@ class BeamGroupRuntime:
                             f"material {material.mid} is plastic (use ELFORM 1 with "
                             "cross-section integration)", src.file, src.line, "SECTION_BEAM")
         self.material = mat
-        if mat.fail > 0.0:
-            self.warnings.append(f"part {self.pid}: FAIL of material {material.mid} is not "
-                                 "applied to beams (they are not eroded)")
         e_mod, nu, rho = mat.e_mod, mat.nu, mat.density
         g_mod = 0.5 * e_mod / (1.0 + nu)
         p = section.params
@@ -147,6 +147,9 @@ class BeamGroupRuntime:
         self.sig = np.zeros((e, npt, 3))
         self.back = np.zeros((e, npt, 3))
         self.eps_p = np.zeros((e, npt))
+        self.pfail = np.zeros((e, npt), dtype=np.uint8)
+        #: indices of the beams deleted by material failure, in order
+        self.failed: list[int] = []
         self.plastic_strain = np.zeros(e)
         self.internal_energy = 0.0
         self.hourglass_energy = 0.0
@@ -199,7 +202,7 @@ class BeamGroupRuntime:
         d, i, de = beam_forces(x, w, float(dt), f, moment, self.conn, self.alive, self.frame0,
                                self.length0, self.triad, self.nat, self.force, self.resultants,
                                self.law, self.sec, self.pts, self.sig, self.back, self.eps_p,
-                               self.hard_x, self.hard_y, self.params, self.rate_x,
+                               self.pfail, self.hard_x, self.hard_y, self.params, self.rate_x,
                                self.rate_y, self.dt0, self._dte, self._ework,
                                self._rot)
         self.internal_energy += de
@@ -208,6 +211,10 @@ class BeamGroupRuntime:
         self.stress[:, 5] = self.resultants[:, 2] / self.area
         if self.law == LAW_INTEGRATED and self.sec[S_PLASTIC] > 0.0:
             np.max(self.eps_p, axis=1, out=self.plastic_strain)
+            if self.material.fail > 0.0 and len(self.failed) < self.n_elem:
+                gone = np.nonzero(~self.alive & (self.pfail.min(axis=1) > 0))[0]
+                known = set(self.failed)
+                self.failed.extend(int(k) for k in gone if int(k) not in known)
         return float(d), int(i), -1
 
     def erode(self, idx: np.ndarray) -> None:

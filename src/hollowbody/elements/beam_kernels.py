@@ -52,7 +52,12 @@ import numpy as np
 from numba import njit
 
 from hollowbody.materials.beam_plasticity import beam_point_update
-from hollowbody.materials.plane_stress_plasticity import P_CS_C, P_RATE_CURVE, rate_factor
+from hollowbody.materials.plane_stress_plasticity import (
+    P_CS_C,
+    P_FAIL,
+    P_RATE_CURVE,
+    rate_factor,
+)
 
 LAW_RESULTANT = 0
 LAW_INTEGRATED = 1
@@ -145,8 +150,8 @@ def _spin_moment(t0: float, t1: float, t2: float, m0: float, m1: float, m2: floa
 
 @njit(cache=True, error_model="numpy")
 def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, nat, force,
-                res, law: int, sec, pts, sig, back, eps_p, hard_x, hard_y, mp, rate_x,
-                rate_y, dt0, dte, e_work, rot) -> tuple[float, int, float]:
+                res, law: int, sec, pts, sig, back, eps_p, pfail, hard_x, hard_y, mp,
+                rate_x, rate_y, dt0, dte, e_work, rot) -> tuple[float, int, float]:
     """Update the beams of a group and add their nodal forces and moments.
 
     x (n, 3) mm at t^{n+1}; w (n, 3) rad/ms at t^{n+1/2}; dt ms (0: forces of
@@ -157,6 +162,9 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
     res (e, 6) resultants (N, Q_s, Q_t kN; T, M_s, M_t kN mm) at the middle;
     law LAW_RESULTANT / LAW_INTEGRATED; sec (N_SEC,) packed section; pts (p, 3)
     stress points (s, t, weight); sig, back (e, p, 3) GPa; eps_p (e, p);
+    pfail (e, p) uint8: failed points (effective plastic strain reached the
+    material's FAIL, ``mp[P_FAIL] > 0``): no stress from then on; a beam whose
+    points have all failed is deleted (alive False);
     hard_x, hard_y hardening table; mp (N_PARAMS,) the material's packed
     parameters and rate_x, rate_y its rate curve (strain-rate scaling of the
     yield stress, :func:`~hollowbody.materials.plane_stress_plasticity.rate_factor`);
@@ -236,7 +244,12 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
             rn = rqs = rqt = rt = rms = rmt = 0.0
             rated = sec[S_PLASTIC] > 0.0 and dt > 0.0 and (mp[P_CS_C] > 0.0
                                                            or mp[P_RATE_CURVE] > 0.0)
+            fail = mp[P_FAIL] if sec[S_PLASTIC] > 0.0 else 0.0
+            n_failed = 0
             for k in range(np_):
+                if pfail[i, k] != 0:
+                    n_failed += 1
+                    continue
                 ps_ = pts[k, 0]
                 pt_ = pts[k, 1]
                 wk = pts[k, 2]
@@ -249,6 +262,13 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
                                      math.sqrt(pgs * pgs + pgt * pgt) / dt)
                 beam_point_update(sig, back, i, k, eps_p, pe, pgs, pgt, sec[S_E], sec[S_GS],
                                   sec[S_HK], sec[S_PLASTIC] > 0.0, hard_x, hard_y, rf)
+                if fail > 0.0 and eps_p[i, k] >= fail:  # the point fails: no stress
+                    pfail[i, k] = 1
+                    n_failed += 1
+                    for c in range(3):
+                        sig[i, k, c] = 0.0
+                        back[i, k, c] = 0.0
+                    continue
                 s0 = sig[i, k, 0] * wk
                 rn += s0
                 rms += s0 * pt_
@@ -256,6 +276,9 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
                 rqs += sig[i, k, 1] * wk
                 rqt += sig[i, k, 2] * wk
                 rt += (sig[i, k, 2] * ps_ - sig[i, k, 1] * pt_) * wk
+            if n_failed == np_:  # every point failed: the beam is deleted
+                alive[i] = False
+                rn = rqs = rqt = rt = rms = rmt = 0.0
             fN = rn
             fT = rt
             m1s = -rms + 0.5 * L * rqt
@@ -306,6 +329,9 @@ def beam_forces(x, w, dt: float, f, mom, conn, alive, frame0, length0, triad, na
             x2 = qs[1, c1] * e[2, c2] - qs[1, c2] * e[2, c1]
             mom[n1, c] -= a0 * e[0, c] + a1 * e[1, c] + a2 * e[2, c] - sr * x1
             mom[n2, c] -= b0 * e[0, c] + b1 * e[1, c] + b2 * e[2, c] - sr * x2
+        if not alive[i]:  # deleted in this call (material failure)
+            dte[i] = np.inf
+            continue
         d = dt0[i] * ln / L
         dte[i] = d
         if d < dmin:

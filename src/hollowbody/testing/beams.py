@@ -30,7 +30,7 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
                     etan: float = 0.0, end_time: float = 1.0, tssfac: float = 0.9,
                     orientation: bool = True, shear_area: float | None = None,
                     gauss_rule: tuple[int, int] | None = None, clamped: bool = True,
-                    src: float = 0.0, srp: float = 0.0) -> str:
+                    src: float = 0.0, srp: float = 0.0, fail: float = 0.0) -> str:
     """Keyword text of a clamped beam along +x (nodes 1..n+1, elements 1..n).
 
     Section: rectangle ``width`` (s, along global y) x ``height`` (t, along z),
@@ -41,7 +41,8 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
     the root (node n+2 at y = 10), else no N3. gauss_rule (n_s, n_t): ELFORM 1
     with an *INTEGRATION_BEAM rule (IRID 1) of n_s x n_t Gauss points.
     clamped: node 1 fixed (else the beam is free). src, srp: Cowper-Symonds
-    constants of the *MAT_PLASTIC_KINEMATIC (1/ms; 0 = none).
+    constants of the *MAT_PLASTIC_KINEMATIC (1/ms; 0 = none). fail > 0: a
+    *MAT_PIECEWISE_LINEAR_PLASTICITY (SIGY, ETAN) with that FAIL instead.
     """
     lines = ["*KEYWORD", "*TITLE", "beam cantilever", "*CONTROL_TERMINATION",
              _f(end_time), "*CONTROL_TIMESTEP", _f(0.0) + _f(tssfac), "*NODE"]
@@ -75,7 +76,10 @@ def cantilever_deck(n: int = 10, length: float = 100.0, elform: int = 2, *,
             for a, wa in zip(xs, ws):
                 for b, wb in zip(xt, wt):
                     lines.append(f"{a:10.7f}{b:10.7f}{0.25 * wa * wb:10.7f}")
-    if sigy > 0.0:
+    if sigy > 0.0 and fail > 0.0:
+        lines += ["*MAT_PIECEWISE_LINEAR_PLASTICITY", "".join(
+            [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(fail)])]
+    elif sigy > 0.0:
         lines += ["*MAT_PLASTIC_KINEMATIC", "".join(
             [f"{1:10d}", _f(rho), _f(e_mod), _f(nu), _f(sigy), _f(etan), _f(1.0)]),
             _f(src) + _f(srp)]

@@ -136,3 +136,42 @@ def test_energy_balance_with_plastic_work(tmp_path):
     rt = run.plan.elements[0]
     assert rt.plastic_strain[0] > 0.0 and rt.plastic_strain[-1] == 0.0
     assert worst[0] < 1e-5 * term.external_work
+
+
+def test_fail_deletes_the_beam_when_every_point_failed(tmp_path):
+    """*MAT_PIECEWISE_LINEAR_PLASTICITY with FAIL = 0.02, perfectly plastic: a
+    single beam pulled at 2 mm/ms (uniform strain) fails at every point at once
+    when eps_p = FAIL, i.e. at t = (FAIL + sigma_y / E) L / v; the beam is
+    deleted there (within a step) and carries no force after."""
+    fail, speed = 0.02, 2.0
+    run = engine(tmp_path, n=1, elform=1, sigy=SIGY, etan=0.0, fail=fail)
+    add_load(run, 1, velocity=lambda t: np.array([speed, 0.0, 0.0]))
+    rt = run.plan.elements[0]
+    t_fail = (fail + SIGY / E) * L / speed
+    dt = run.state.dt_next
+    run_until(run, t_fail - 2.0 * dt)
+    assert rt.alive[0] and rt.resultants[0, 0] == pytest.approx(25.0 * SIGY, rel=1e-6)
+    while rt.alive[0] and run.t < t_fail + 2.0 * dt:  # (nothing sets a step after)
+        run.step()
+    assert abs(run.t - t_fail) < dt
+    assert not rt.alive[0] and rt.failed == [0]
+    assert rt.resultants[0, 0] == 0.0 and np.isinf(rt.dt_elem[0])
+
+
+def test_fail_in_bending_takes_the_outer_fibres_first(tmp_path):
+    """Pure bending to a curvature whose outer-fibre plastic strain passes FAIL
+    while the inner fibres stay below: the outer points fail (no stress), the
+    beam stays (its inner points carry the moment), the moment falls below the
+    intact section's."""
+    fail = 0.01
+    h = 5.0
+    run = engine(tmp_path, n=2, elform=1, width=5.0, height=h, sigy=SIGY, etan=0.0,
+                 fail=fail, gauss_rule=(2, 10))
+    kappa = 2.0 * (fail + SIGY / E) / h  # outer fibre at FAIL (points sit inside it)
+    rate = 1.4 * kappa * L / 20.0
+    add_load(run, 2, spin=lambda t: np.array([0.0, -rate * min(1.0, t / 2.0), 0.0]))
+    rt = run.plan.elements[0]
+    run_until(run, 21.0)
+    assert rt.alive.all()
+    assert rt.pfail.any() and not rt.pfail.all()
+    assert -rt.resultants[0, 4] < 0.9 * SIGY * 5.0 * h * h / 4.0
