@@ -34,7 +34,7 @@ from hollowbody.elements.beam_section import (
 )
 from hollowbody.errors import DeckError
 from hollowbody.materials.plane_stress_material import SHELL_MATERIAL_KINDS, shell_material
-from hollowbody.model.beams import BeamGroup, beam_frames
+from hollowbody.model.beams import BeamGroup, beam_frames, section_constants
 from hollowbody.model.model import Curve, MaterialDef, SectionDef
 
 
@@ -91,6 +91,9 @@ class BeamGroupRuntime:
         self.frame0 = np.ascontiguousarray(frames)
         self.length0 = np.ascontiguousarray(length)
         self.sec = np.zeros(N_SEC)
+        # the mass is that of the section's shape (what model.mass lumps), the
+        # stiffness that of its stress points
+        mass_area = section_constants(self.elform, p)[0]
         if self.elform == 2:
             area, iss, itt, tors = p["A"], p["ISS"], p["ITT"], p["J"]
             sa = float(p.get("SA", 0.0))
@@ -123,7 +126,7 @@ class BeamGroupRuntime:
         self.area, self.iss, self.itt, self.torsion = float(area), float(iss), float(itt), \
             float(tors)
         nsm = float(p.get("NSM", 0.0))
-        self.mass = (rho * area + nsm) * self.length0
+        self.mass = (rho * mass_area + nsm) * self.length0
         self.r2 = rotational_r2(self.length0, area, iss, itt)
         m_node = 0.5 * self.mass
         self.dt0 = np.ascontiguousarray(element_step(
