@@ -173,3 +173,22 @@ def test_cli_exit_code_two_without_traceback(tmp_path, capsys):
     assert cli_main(["check", str(path)]) == 2
     err = capsys.readouterr().err
     assert "beam.k:28" in err and "ELEMENT_BEAM" in err and "Traceback" not in err
+
+
+def test_runtime_masses_match_the_lumped_masses(tmp_path):
+    """The run's nodal masses (model.mass) and the beam runtimes' own masses agree
+    (NSM included, a user rule included), and the rotational inertia is
+    m_node max(L^2 / 4, (ISS + ITT) / A) per node."""
+    from hollowbody.elements.beam_group import beam_runtimes
+    from hollowbody.model.mass import lumped_node_mass
+
+    model = build_model(read_deck(_write(tmp_path, DECK)))
+    node_mass, _ = lumped_node_mass(model)
+    rts = beam_runtimes(model, model.node_x0)
+    n = model.n_nodes
+    total = sum(rt.lumped_mass(n) for rt in rts)
+    assert np.allclose(total, node_mass, rtol=1e-12)
+    rt = rts[0]  # resultant part: A 25, ISS = ITT = 52.08, L = 10
+    j = rt.lumped_rotational_inertia(n)
+    m_node = 0.5 * 7.85e-6 * 25.0 * 10.0
+    assert j[0] == pytest.approx(m_node * max(10.0 ** 2 / 4.0, 2 * 52.08 / 25.0))
