@@ -14,6 +14,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from hollowbody.build.beams import section_def as beam_section_def
 from hollowbody.build.common import item_error, or_default
 from hollowbody.build.mechanics import build_mechanics
 from hollowbody.build.surface_refs import defined_surface
@@ -51,6 +52,7 @@ from hollowbody.io.keyword import (
     PrescribedMotionKeyword,
     PrescribedMotionRigid,
     PrescribedMotionSet,
+    SectionBeam,
     SectionDiscrete,
     SectionShell,
     SectionSolid,
@@ -199,11 +201,14 @@ class _Builder:
 
     def sections(self) -> dict[int, m.SectionDef]:
         out: dict[int, m.SectionDef] = {}
-        items = self.of(SectionSolid) + self.of(SectionShell) + self.of(SectionDiscrete)
+        items = (self.of(SectionSolid) + self.of(SectionShell) + self.of(SectionDiscrete)
+                 + self.of(SectionBeam))
         for secid, s in _unique_ids(items, "section", "secid").items():
             if isinstance(s, SectionDiscrete):  # build.discrete reads the rest
                 out[secid] = m.SectionDef(secid, "discrete", 0, {"DRO": float(s.dro)},
                                           s.title, s.source)
+            elif isinstance(s, SectionBeam):  # [beams]
+                out[secid] = beam_section_def(s)
             elif isinstance(s, SectionShell):
                 t1 = s.t1
                 params = {"T1": t1, "T2": _or(s.t2, t1), "T3": _or(s.t3, t1),

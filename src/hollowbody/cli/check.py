@@ -126,7 +126,8 @@ def print_summary(s: dict) -> None:
     con.print(f"nodes {s['nodes']}; solids: {e['hexahedra']} hexahedra, {e['wedges']} wedges, "
               f"{e['tetrahedra']} tetrahedra" +
               (f", {e['other_solids']} other" if e["other_solids"] else "") +
-              f"; shells: {e['shells']} quadrilaterals, {e['triangles']} triangles; "
+              f"; shells: {e['shells']} quadrilaterals, {e['triangles']} triangles; " +
+              (f"beams: {e['beams']}; " if e.get("beams") else "") +
               f"mass elements {e['mass_elements']}")
     if s.get("discrete"):
         con.print("discrete elements: " + "; ".join(f"{n} {law}" for law, n in
@@ -160,8 +161,9 @@ def print_summary(s: dict) -> None:
     ts = s["time_step"] or {"solid": None, "shell": None, "run_dt": None}
     if s["time_step"] is not None:
         con.print(f"critical time step: solids {_fmt_dt(ts['solid'])}; "
-                  f"shells {_fmt_dt(ts['shell'])}" + (f"; discrete {_fmt_dt(ts['discrete'])}"
-                                                      if ts.get("discrete") else ""))
+                  f"shells {_fmt_dt(ts['shell'])}" +
+                  (f"; beams {_fmt_dt(ts['beam'])}" if ts.get("beam") else "") +
+                  (f"; discrete {_fmt_dt(ts['discrete'])}" if ts.get("discrete") else ""))
     if ts["run_dt"]:
         con.print(f"first time step of the run (TSSFAC {ts['tssfac']:g}) {ts['run_dt']:.4g} ms; "
                   f"end time {s['end_time']:g} ms -> about "

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hollowbody.model.beams import beam_masses
 from hollowbody.model.model import Model
 
 # Hexahedron split into 6 tetrahedra around the diagonal 0-6 (exact for
@@ -80,6 +81,11 @@ def lumped_node_mass(model: Model, x0: np.ndarray | None = None
         m = rho * quad_areas(g.conn, x0) * g.thickness.mean(axis=1)
         spread_element_mass(node_mass, g.conn, m)
         part_mass[g.pid] = part_mass.get(g.pid, 0.0) + float(m.sum())
+    for g in model.beam_groups:  # [beams] rho A L + NSM L, half on each end node
+        sec = model.sections[model.parts[g.pid].secid]
+        m = beam_masses(g, model.material_of(g.pid).density, sec.elform, sec.params, x0)
+        spread_element_mass(node_mass, g.conn[:, :2], m)
+        part_mass[g.pid] = part_mass.get(g.pid, 0.0) + float(m.sum())
     return node_mass, part_mass
 
 
@@ -87,6 +93,7 @@ def part_nodes(model: Model, pid: int) -> np.ndarray:
     """Sorted unique node indices used by the elements of part ``pid``."""
     conns = [g.conn.ravel() for g in model.solid_groups if g.pid == pid]
     conns += [g.conn.ravel() for g in model.shell_groups if g.pid == pid]
+    conns += [g.conn[:, :2].ravel() for g in model.beam_groups if g.pid == pid]
     if not conns:
         return np.zeros(0, dtype=np.int64)
     return np.unique(np.concatenate(conns)).astype(np.int64)

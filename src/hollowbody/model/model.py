@@ -77,12 +77,15 @@ class MaterialDef:
 
 @dataclass
 class SectionDef:
-    """*SECTION_SOLID or *SECTION_SHELL.
+    """*SECTION_SOLID, *SECTION_SHELL or *SECTION_BEAM.
 
-    kind: ``"solid"`` or ``"shell"``. ``elform``: LS-DYNA element formulation
-    (solid default 1 = one-point hexahedron; shell default 2 = Belytschko-Tsay).
+    kind: ``"solid"``, ``"shell"`` or ``"beam"``. ``elform``: LS-DYNA element
+    formulation (solid default 1 = one-point hexahedron; shell default 2 =
+    Belytschko-Tsay; beam default 1, see docs/beams.md).
     ``params``: for shells T1..T4 (mm), NIP, SHRF, QR (0 Gauss, -1 Lobatto as
-    stored by LS-DYNA's IRID/QR convention), for solids possibly empty.
+    stored by LS-DYNA's IRID/QR convention), for solids possibly empty; for
+    beams the *SECTION_BEAM fields by their LS-DYNA names
+    (:func:`hollowbody.build.beams.section_def`).
     """
 
     secid: int

@@ -157,6 +157,9 @@ def summarize(model: Model) -> dict:
         count[g.pid] = count.get(g.pid, 0) + g.n_elem
     if discrete:
         elements["discrete"] = sum(discrete.values())
+    for g in model.beam_groups:  # [beams]
+        elements["beams"] = elements.get("beams", 0) + int(g.conn.shape[0])
+        count[g.pid] = count.get(g.pid, 0) + g.conn.shape[0]
     node_mass, part_mass = lumped_node_mass(model)
     for pid, pin in model.part_inertia.items():
         if pin.tm > 0.0:
@@ -209,7 +212,8 @@ def problems(model: Model, summary: dict) -> list[str]:
     out = []
     if model.n_nodes == 0:
         out.append("no nodes")
-    if not model.solid_groups and not model.shell_groups and not model.discrete_groups:
+    if not (model.solid_groups or model.shell_groups or model.discrete_groups
+            or model.beam_groups):
         out.append("no elements")
     if model.controls.end_time <= 0.0:
         out.append("no termination time (*CONTROL_TERMINATION ENDTIM is 0)")

@@ -42,6 +42,7 @@ def kinetic_energy(plan, state) -> float:  # noqa: ANN001
     ke = 0.5 * float((state.node_mass[d] * (v[d] ** 2).sum(axis=1)).sum())
     if plan.has_rotations:
         w = state.w + _half_step(state) * state.mom * state.inv_i[:, None]
+        w[plan.constraints.fixed_rot] = 0.0  # SPC'd rotations: their moment is the reaction
         ke += 0.5 * float((state.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
     half = _half_step(state)
     return ke + sum(rigid_kinetic_energy(b, half) for b in plan.bodies)

@@ -144,8 +144,9 @@ class MassScaling:
         dm = rt.mass[need] * (new - old)
         g.mfac[need] = new
         g.spread(need, dm, self._dm)
-        if g.shell:
-            rt.mass_q[need] += 0.25 * dm
+        if g.shell:  # rotational groups (shells, beams): inertia grows with the mass
+            if hasattr(rt, "mass_q"):  # the shells' nodal mass share
+                rt.mass_q[need] += 0.25 * dm
             di = rt.r2[need] * dm
             g.inertia[need] += di
             g.spread(need, di, self._di)

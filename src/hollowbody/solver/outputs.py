@@ -352,8 +352,8 @@ class RunOutputs:
             self._add_block(cells, data, "hexahedron", g, runtimes.get(g.pid))
         for g in self.model.shell_groups:
             self._add_block(cells, data, "quad", g, runtimes.get(g.pid))
-        for rt in self.asm.elements:  # springs and dampers as lines (stress xx: force)
-            if getattr(rt, "family", "") == "discrete":
+        for rt in self.asm.elements:  # springs, dampers and beams as lines (N1, N2)
+            if getattr(rt, "family", "") in ("discrete", "beams"):
                 self._add_block(cells, data, "line", rt, rt)
         if not cells:
             return

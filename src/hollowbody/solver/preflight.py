@@ -19,11 +19,14 @@ from hollowbody.solver.state import init_state
 from hollowbody.solver.step import Termination, start
 
 
-def _smallest(plan, rotational: bool) -> dict | None:  # noqa: ANN001 - Assembly
+def _smallest(plan, rotational: bool, family: str | None = None
+              ) -> dict | None:  # noqa: ANN001 - Assembly
     best = None
     for rt in plan.elements:
         if bool(getattr(rt, "rotational", False)) != rotational or rt.n_elem == 0 \
                 or getattr(rt, "family", "") == "discrete":  # reported as "discrete"
+            continue
+        if getattr(rt, "family", None) != family:  # solids, shells: no family name
             continue
         d = np.asarray(rt.dt_elem) * getattr(rt, "step_factor", 1.0)
         k = int(np.argmin(d))
@@ -35,7 +38,7 @@ def _smallest(plan, rotational: bool) -> dict | None:  # noqa: ANN001 - Assembly
 def first_time_step(model, threads: int | str | None = None) -> dict:  # noqa: ANN001 - Model
     """The run's time steps at t = 0 (ms) and its numba threads.
 
-    Returns {"solid": {dt, element, part} or None, "shell": ... (the smallest
+    Returns {"solid": {dt, element, part} or None, "shell": ..., "beam": ... (the smallest
     critical step of each element family, before TSSFAC, with its step
     factor), "tssfac", "run_dt" (the first step the run takes), "element",
     "part" (what sets it), "mass_scaling_target", "threads": {"count",
@@ -63,6 +66,7 @@ def first_time_step(model, threads: int | str | None = None) -> dict:  # noqa: A
         "part": int(low[1].pid)}
     return {"solid": _smallest(plan, False), "shell": _smallest(plan, True),
             "discrete": discrete,
+            "beam": _smallest(plan, True, "beams"),
             "tssfac": plan.tssfac, "run_dt": float(state.dt_next), "element": int(elem),
             "part": int(pid), "mass_scaling_target": state.mass_scaling.target,
             "threads": {"count": n_threads, "reason": why}}

@@ -150,6 +150,8 @@ def assemble(model: Model) -> Assembly:
     for rt in [*beam_runtimes(model, x0), *discrete_runtimes(model, x0)]:
         counts[rt.family] = counts.get(rt.family, 0) + int(rt.n_elem)
         asm.elements.append(rt)
+        if rt.family == "beams":  # [beams] part kinetic energies (matsum)
+            asm.part_share[rt.pid] = _part_share(n, rt.conn, rt.mass)
     for rt in asm.elements:  # massless discrete parts: in matsum with their energy
         if getattr(rt, "family", "") == "discrete":
             asm.part_share.setdefault(rt.pid, PartShare(np.zeros(0, np.int64), np.zeros(0)))

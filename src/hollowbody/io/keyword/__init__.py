@@ -9,6 +9,7 @@ See ``docs/keyword.md`` for the supported keywords and the deck-building API.
 
 from hollowbody.io.keyword.base import KeywordItem, RawKeyword, SimpleKeyword, Title
 from hollowbody.io.keyword.deck import Deck, Include
+from hollowbody.io.keyword.kw_beams import ElementBeam, IntegrationBeam, SectionBeam
 from hollowbody.io.keyword.kw_body_loads import (
     LoadBody,
     LoadBodyParts,
@@ -113,15 +114,16 @@ __all__ = [
     "ControlContact", "ControlHourglass", "ControlShell", "ControlTermination", "ControlTimestep",
     "DatabaseAscii", "DatabaseBinaryD3dump", "DatabaseBinaryD3plot", "DatabaseHistoryNode",
     "DatabaseHistoryNodeSet",
-    "Deck", "DefineCurve", "DefineSdOrientation", "ElementDiscrete", "Hourglass", "Include",
-    "InitialVelocity", "InitialVelocityGeneration", "InitialVelocityNode", "KeywordItem",
-    "LoadBody", "LoadBodyParts", "LoadNodePoint", "LoadNodeSet", "LoadRigidBody",
-    "MassElements", "MatDamperViscous", "MatElastic", "MatNull",
-    "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid", "MatSimplifiedRubber",
-    "MatSpringElastic", "MatSpringGeneralNonlinear", "MatSpringNonlinearElastic", "Material",
-    "Nodes", "Part", "PartInertia", "PartialRead", "RigidwallPlanar",
-    "PrescribedMotionKeyword", "PrescribedMotionNode",
-    "PrescribedMotionRigid", "PrescribedMotionSet", "RawKeyword", "SectionDiscrete", "SectionShell",
+    "Deck", "DefineCurve", "DefineSdOrientation", "ElementBeam", "ElementDiscrete",
+    "Hourglass", "Include", "InitialVelocity", "InitialVelocityGeneration",
+    "InitialVelocityNode", "IntegrationBeam", "KeywordItem", "LoadBody", "LoadBodyParts",
+    "LoadNodePoint", "LoadNodeSet", "LoadRigidBody", "MassElements", "MatDamperViscous",
+    "MatElastic", "MatNull", "MatPiecewiseLinearPlasticity", "MatPlasticKinematic", "MatRigid",
+    "MatSimplifiedRubber", "MatSpringElastic", "MatSpringGeneralNonlinear",
+    "MatSpringNonlinearElastic", "Material", "Nodes", "Part", "PartInertia", "PartialRead",
+    "PrescribedMotionKeyword", "PrescribedMotionNode", "PrescribedMotionRigid",
+    "PrescribedMotionSet", "RawKeyword", "RigidwallPlanar", "SectionBeam", "SectionDiscrete",
+    "SectionShell",
     "SectionSolid", "SetNodeList", "SetNodeListGenerate", "SetPartList", "SetPartListGenerate",
     "SetSegment", "ShellElements", "SimpleKeyword", "SolidElements", "TIED_OFFSETS",
     "TIED_TYPES", "TiedContact", "Title",
