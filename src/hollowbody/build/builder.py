@@ -66,6 +66,7 @@ from hollowbody.io.keyword import (
     TiedContact,
 )
 from hollowbody.model import model as m
+from hollowbody.model.mass import part_nodes
 from hollowbody.model.rigid_bodies import local_axes_inertia
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
@@ -381,11 +382,11 @@ def build_model(deck: Deck) -> m.Model:
     model.spcs = _spcs(b, model)
     model.prescribed = _prescribed(b, model)
     model.part_inertia = _part_inertia(b, model)
-    _initial_velocities(b, model)
     model.contacts = _contacts(b, model)
     model.tied_contacts = tied_contacts(b.of(TiedContact), model, len(model.contacts) + 1)
     model.output = _outputs(b, model)
     build_mechanics(b, model)
+    _initial_velocities(b, model)  # after the beams and springs: their parts' nodes
     return model
 
 
@@ -494,8 +495,8 @@ def _part_inertia(b: _Builder, model: m.Model) -> dict[int, m.PartInertia]:
 
 
 def _part_nodes(model: m.Model, pids: list[int]) -> np.ndarray:
-    conns = [g.conn.ravel() for g in model.solid_groups + model.shell_groups if g.pid in pids]
-    return np.unique(np.concatenate(conns)).astype(np.int64) if conns else np.zeros(0, np.int64)
+    nodes = [part_nodes(model, pid) for pid in pids]
+    return np.unique(np.concatenate(nodes)).astype(np.int64) if nodes else np.zeros(0, np.int64)
 
 
 def _initial_velocities(b: _Builder, model: m.Model) -> None:

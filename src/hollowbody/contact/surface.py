@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hollowbody.errors import UserInputError
+from hollowbody.model.beams import section_constants
 from hollowbody.model.model import Model, SurfaceRef
 
 #: Faces of the 8-node hexahedron (LS-DYNA node order), outward for a
@@ -259,10 +260,45 @@ def _parts_surface(model: Model, pids: set[int], shell_thick_override: float,
     seg = np.concatenate(segs).astype(np.int32)
     st = np.concatenate(thick)
     nodes = np.unique(seg.ravel()).astype(np.int64)
+    node_thick = _node_thickness(nodes, seg, st, model.n_nodes)
+    beam_nodes, beam_thick = beam_contact_nodes(model, pids)
+    if beam_nodes.size:  # beams: their nodes only, with the section's thickness
+        t = np.zeros(model.n_nodes)
+        t[nodes] = node_thick
+        np.maximum.at(t, beam_nodes, beam_thick)
+        nodes = np.union1d(nodes, beam_nodes).astype(np.int64)
+        node_thick = t[nodes]
     return Surface(seg=seg, seg_kind=np.concatenate(kind), seg_thick=st,
                    seg_group=np.concatenate(grp).astype(np.int32),
                    seg_elem=np.concatenate(elem).astype(np.int64), nodes=nodes,
-                   node_thick=_node_thickness(nodes, seg, st, model.n_nodes))
+                   node_thick=node_thick)
+
+
+def beam_contact_nodes(model: Model, pids: set[int]) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (k,) of the beams of parts ``pids`` and their contact thickness (k,) mm.
+
+    A beam takes part in a contact through its two nodes (N1, N2; no segment),
+    with the diameter of its section as contact thickness, as LS-DYNA's
+    automatic contacts treat beams: a tube's outer diameter TS, else the
+    diameter of the circle of the section's area, sqrt(4 A / pi) (SST / MST apply
+    to shells only, as in LS-DYNA). A node on several beams takes the largest.
+    """
+    ids, thick = [], []
+    for g in model.beam_groups:
+        if g.pid not in pids or g.conn.shape[0] == 0:
+            continue
+        sec = model.sections[model.parts[g.pid].secid]
+        p = sec.params
+        if sec.elform == 1 and int(p.get("CST", 0)) == 1:
+            d = 0.5 * (p["TS1"] + p["TS2"])
+        else:
+            d = float(np.sqrt(4.0 * section_constants(sec.elform, p)[0] / np.pi))
+        n = np.asarray(g.conn[:, :2], dtype=np.int64).ravel()
+        ids.append(n)
+        thick.append(np.full(n.size, d))
+    if not ids:
+        return np.zeros(0, np.int64), np.zeros(0)
+    return np.concatenate(ids), np.concatenate(thick)
 
 
 def model_surface(model: Model, shell_thick_override: float = 0.0,

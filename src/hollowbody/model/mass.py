@@ -90,10 +90,13 @@ def lumped_node_mass(model: Model, x0: np.ndarray | None = None
 
 
 def part_nodes(model: Model, pid: int) -> np.ndarray:
-    """Sorted unique node indices used by the elements of part ``pid``."""
+    """Sorted unique node indices used by the elements of part ``pid`` (solids, shells,
+    beams' N1 and N2, discrete elements)."""
     conns = [g.conn.ravel() for g in model.solid_groups if g.pid == pid]
     conns += [g.conn.ravel() for g in model.shell_groups if g.pid == pid]
     conns += [g.conn[:, :2].ravel() for g in model.beam_groups if g.pid == pid]
+    conns += [np.concatenate([g.n1, g.n2]) for g in model.discrete_groups if g.pid == pid]
+    conns = [c[c >= 0] for c in conns]  # a grounded spring's N2 is no node
     if not conns:
         return np.zeros(0, dtype=np.int64)
     return np.unique(np.concatenate(conns)).astype(np.int64)
