@@ -18,7 +18,6 @@ import sys
 import textwrap
 from pathlib import Path
 
-import numba
 import pytest
 from solver_decks import crushed_column, cube_and_plate
 
@@ -33,12 +32,7 @@ HISTORIES = ("glstat.csv", "rcforc.csv", "nodout.csv", "spcforc.csv", "matsum.cs
              "rbdout.csv")
 
 
-@pytest.fixture(autouse=True)
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def _deck(**kw):

@@ -37,24 +37,13 @@ class Part(SimpleKeyword):
     MAIN_CARD: ClassVar[int] = 1
 
 
-@register
 @dataclass(kw_only=True)
-class PartInertia(SimpleKeyword):
-    """*PART_INERTIA: a part with given rigid-body mass properties.
+class InertiaFields:
+    """Fields of the inertia cards of *PART_INERTIA and
+    *CONSTRAINED_NODAL_RIGID_BODY_INERTIA: XC YC ZC (mm) TM (kg) IRCS NODEID; IXX IXY
+    IXZ IYY IYZ IZZ (kg*mm^2); VTX VTY VTZ (mm/ms) VRX VRY VRZ (rad/ms); with IRCS = 1
+    the local axes XL YL ZL XLIP YLIP ZLIP."""
 
-    Cards: heading; PID..TMID; XC YC ZC TM IRCS NODEID; IXX IXY IXZ IYY IYZ
-    IZZ (kg*mm^2); VTX VTY VTZ VRX VRY VRZ; (IRCS = 1) XL YL ZL XLIP YLIP ZLIP CID.
-    """
-
-    pid: int = 0
-    secid: int = 0
-    mid: int = 0
-    eosid: int = 0
-    hgid: int = 0
-    grav: int = 0
-    adpopt: int = 0
-    tmid: int = 0
-    title: str = ""
     xc: float = 0.0
     yc: float = 0.0
     zc: float = 0.0
@@ -79,6 +68,26 @@ class PartInertia(SimpleKeyword):
     xlip: float = 0.0
     ylip: float = 0.0
     zlip: float = 0.0
+
+
+@register
+@dataclass(kw_only=True)
+class PartInertia(InertiaFields, SimpleKeyword):
+    """*PART_INERTIA: a part with given rigid-body mass properties.
+
+    Cards: heading; PID..TMID; XC YC ZC TM IRCS NODEID; IXX IXY IXZ IYY IYZ
+    IZZ (kg*mm^2); VTX VTY VTZ VRX VRY VRZ; (IRCS = 1) XL YL ZL XLIP YLIP ZLIP CID.
+    """
+
+    pid: int = 0
+    secid: int = 0
+    mid: int = 0
+    eosid: int = 0
+    hgid: int = 0
+    grav: int = 0
+    adpopt: int = 0
+    tmid: int = 0
+    title: str = ""
     cid: int = 0
 
     KEYWORD: ClassVar[str] = "PART_INERTIA"

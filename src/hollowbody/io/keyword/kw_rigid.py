@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from hollowbody.io.keyword.base import SimpleKeyword, register
+from hollowbody.io.keyword.kw_parts import InertiaFields
 
 
 @register
@@ -98,7 +99,7 @@ _INERTIA_CARDS = ("xc yc zc tm ircs nodeid", "ixx ixy ixz iyy iyz izz",
 
 
 @dataclass(kw_only=True)
-class ConstrainedNodalRigidBodyKeyword(SimpleKeyword):
+class ConstrainedNodalRigidBodyKeyword(InertiaFields, SimpleKeyword):
     """Fields of every *CONSTRAINED_NODAL_RIGID_BODY variant.
 
     Card 1: PID (the body's id, used for output and joints) CID (output system)
@@ -117,30 +118,6 @@ class ConstrainedNodalRigidBodyKeyword(SimpleKeyword):
     cmo: float = 0.0
     con1: float = 0.0
     con2: float = 0.0
-    xc: float = 0.0
-    yc: float = 0.0
-    zc: float = 0.0
-    tm: float = 0.0
-    ircs: int = 0
-    nodeid: int = 0
-    ixx: float = 0.0
-    ixy: float = 0.0
-    ixz: float = 0.0
-    iyy: float = 0.0
-    iyz: float = 0.0
-    izz: float = 0.0
-    vtx: float = 0.0
-    vty: float = 0.0
-    vtz: float = 0.0
-    vrx: float = 0.0
-    vry: float = 0.0
-    vrz: float = 0.0
-    xl: float = 0.0
-    yl: float = 0.0
-    zl: float = 0.0
-    xlip: float = 0.0
-    ylip: float = 0.0
-    zlip: float = 0.0
     cid2: int = 0
     title: str = ""
 

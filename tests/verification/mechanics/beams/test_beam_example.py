@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numba
 import numpy as np
 import pytest
 
@@ -17,12 +16,7 @@ from hollowbody.solver.restart import dump_files
 DECK = Path(__file__).resolve().parents[4] / "examples" / "beams" / "cantilever.k"
 
 
-@pytest.fixture(autouse=True)
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def test_example_runs_with_the_cli(tmp_path):

@@ -6,7 +6,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import meshio
-import numba
 import numpy as np
 import pytest
 from discrete_decks import Driver, crossings, curve, f10, load, oscillator_deck
@@ -48,14 +47,6 @@ def test_resumed_state_equals_the_straight_run():
              plan.elements[1].internal_energy)
     for a, b in zip(first, again):
         assert np.array_equal(a, b)
-
-
-@pytest.fixture
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
 
 
 def test_restart_file_resumes_the_run_exactly(tmp_path, one_thread):

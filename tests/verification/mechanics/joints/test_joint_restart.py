@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import csv
 
-import numba
 import pytest
 from joint_decks import curve, gravity, stiffness_pair
 
@@ -21,12 +20,7 @@ from hollowbody.solver.restart import dump_files
 HISTORIES = ("glstat.csv", "rbdout.csv", "jntforc.csv")
 
 
-@pytest.fixture(autouse=True)
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def _deck():

@@ -3,7 +3,6 @@ writes the same histories as the uninterrupted run, digit for digit (one thread)
 
 from __future__ import annotations
 
-import numba
 import pytest
 from loads_decks import G, add_block, base_deck
 
@@ -21,12 +20,7 @@ from hollowbody.solver.restart import dump_files
 HISTORIES = ("glstat.csv", "rbdout.csv", "rwforc.csv", "matsum.csv")
 
 
-@pytest.fixture(autouse=True)
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def _deck():

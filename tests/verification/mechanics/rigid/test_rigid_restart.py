@@ -11,7 +11,6 @@ must be equal as text.
 
 from __future__ import annotations
 
-import numba
 import pytest
 
 from hollowbody.api import run_model
@@ -19,13 +18,7 @@ from hollowbody.build import build_model
 from hollowbody.solver.restart import dump_files
 from hollowbody.testing.rigid_decks import assembly_deck
 
-
-@pytest.fixture(autouse=True)
-def one_thread():
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    yield
-    numba.set_num_threads(old)
+pytestmark = pytest.mark.usefixtures("one_thread")
 
 
 def _deck():
