@@ -15,7 +15,8 @@ from collections import defaultdict
 import numpy as np
 
 from hollowbody.build.beams import section_def as beam_section_def
-from hollowbody.build.common import item_error, or_default
+from hollowbody.build.common import item_error, no_cid, node_set, or_default
+from hollowbody.build.initial_velocities import initial_velocities
 from hollowbody.build.mechanics import build_mechanics
 from hollowbody.build.surface_refs import defined_surface
 from hollowbody.build.tied import tied_contacts
@@ -40,9 +41,6 @@ from hollowbody.io.keyword import (
     Deck,
     DefineCurve,
     Hourglass,
-    InitialVelocity,
-    InitialVelocityGeneration,
-    InitialVelocityNode,
     KeywordItem,
     MassElements,
     Material,
@@ -66,7 +64,6 @@ from hollowbody.io.keyword import (
     TiedContact,
 )
 from hollowbody.model import model as m
-from hollowbody.model.mass import part_nodes
 from hollowbody.model.rigid_bodies import local_axes_inertia
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
@@ -386,7 +383,7 @@ def build_model(deck: Deck) -> m.Model:
     model.tied_contacts = tied_contacts(b.of(TiedContact), model, len(model.contacts) + 1)
     model.output = _outputs(b, model)
     build_mechanics(b, model)
-    _initial_velocities(b, model)  # after the beams and springs: their parts' nodes
+    initial_velocities(b, model)  # after the beams and springs: their parts' nodes
     return model
 
 
@@ -394,15 +391,8 @@ def build_model(deck: Deck) -> m.Model:
 # Boundary and initial conditions, contacts, output
 
 
-def _node_set(model: m.Model, sid: int, item: KeywordItem) -> np.ndarray:
-    if sid not in model.node_sets:
-        raise _err(item, f"node set {sid} is not defined")
-    return model.node_sets[sid]
-
-
-def _no_cid(item: KeywordItem, cid: int, name: str = "CID") -> None:
-    if cid:
-        raise _err(item, f"{name}={cid}: local coordinate systems are not supported")
+_node_set = node_set
+_no_cid = no_cid
 
 
 def _spcs(b: _Builder, model: m.Model) -> list[m.NodalSPC]:
@@ -492,55 +482,6 @@ def _part_inertia(b: _Builder, model: m.Model) -> dict[int, m.PartInertia]:
         out[it.pid] = m.PartInertia(it.pid, xc, it.tm, inertia, np.array([it.vtx, it.vty, it.vtz]),
                                     np.array([it.vrx, it.vry, it.vrz]), it.source)
     return out
-
-
-def _part_nodes(model: m.Model, pids: list[int]) -> np.ndarray:
-    nodes = [part_nodes(model, pid) for pid in pids]
-    return np.unique(np.concatenate(nodes)).astype(np.int64) if nodes else np.zeros(0, np.int64)
-
-
-def _initial_velocities(b: _Builder, model: m.Model) -> None:
-    """*INITIAL_VELOCITY, then _NODE, then _GENERATION (later ones override)."""
-    v0, w0, everything = model.node_v0, model.node_w0, slice(None)
-    for it in b.of(InitialVelocity):
-        if it.boxid:
-            raise _err(it, "BOXID is not supported")
-        _no_cid(it, it.icid, "ICID")
-        nodes = _node_set(model, it.nsid, it) if it.nsid else everything
-        v0[nodes], w0[nodes] = (it.vx, it.vy, it.vz), (it.vxr, it.vyr, it.vzr)
-        if it.nsidex:
-            ex = _node_set(model, it.nsidex, it)
-            v0[ex], w0[ex] = (it.vxe, it.vye, it.vze), (it.vxre, it.vyre, it.vzre)
-    for it in b.of(InitialVelocityNode):
-        _no_cid(it, it.icid, "ICID")
-        idx = b.node_list([it.nid], it, "initial velocity")
-        v0[idx], w0[idx] = (it.vx, it.vy, it.vz), (it.vxr, it.vyr, it.vzr)
-    for it in b.of(InitialVelocityGeneration):
-        _no_cid(it, it.icid, "ICID")
-        if it.id == 0:
-            nodes = np.arange(model.n_nodes)
-        elif it.styp == 1:
-            if it.id not in model.part_sets:
-                raise _err(it, f"part set {it.id} is not defined")
-            nodes = _part_nodes(model, model.part_sets[it.id])
-        elif it.styp == 2:
-            if it.id not in model.parts:
-                raise _err(it, f"part {it.id} is not defined")
-            nodes = _part_nodes(model, [it.id])
-        elif it.styp == 3:
-            nodes = _node_set(model, it.id, it)
-        else:
-            raise _err(it, f"STYP={it.styp} is not supported (1 part set, 2 part, 3 node set)")
-        v = np.broadcast_to(np.array([it.vx, it.vy, it.vz]), (nodes.size, 3))
-        if it.omega:
-            axis = np.array([it.nx, it.ny, it.nz])
-            if not np.linalg.norm(axis):
-                raise _err(it, "OMEGA is given but the rotation axis NX, NY, NZ is zero",
-                           it.source.line + 1)
-            w = it.omega * axis / np.linalg.norm(axis)
-            v = v + np.cross(w, model.node_x0[nodes] - np.array([it.xc, it.yc, it.zc]))
-            w0[nodes] = w
-        v0[nodes] = v
 
 
 _SURFACE_TYPES = {0: "segment set", 1: "shell element set", 2: "part set", 3: "part",
