@@ -174,6 +174,13 @@ def print_summary(s: dict) -> None:
     for j in s.get("joints", []):
         con.print(f"joint {j['jid']}: {j['type']}, nodes {', '.join(map(str, j['nodes']))}, "
                   f"rigid parts {j['parts'][0]} / {j['parts'][1]}", markup=False)
+    for ld in s.get("loads", []):
+        what = f"DOF {ld['dof']}" if "dof" in ld else ld["target"]
+        con.print(f"load *{ld['kind']}: curve {ld['curve']} x {ld['sf']:g}, {what}"
+                  + (f", {ld['target']}" if "dof" in ld else ""))
+    for w in s.get("rigid_walls", []):
+        con.print(f"rigid wall {w['rwid']}: through {_vec(w['point'])} mm, normal "
+                  f"{_vec(w['normal'])}, {w['nodes']} slave nodes, friction {w['fric']:g}")
     for js in s.get("joint_stiffness", []):
         con.print(f"joint stiffness {js['jsid']}: {js['type']}, parts {js['parts'][0]} / "
                   f"{js['parts'][1]}, coordinate systems {js['cid'][0]} / {js['cid'][1]}",
@@ -210,3 +217,7 @@ def _rigid_table(rows: list[dict]):  # noqa: ANN202 - rich Table
                       ", ".join(f"{c:.5g}" for c in r["centre_mm"]),
                       ", ".join(f"{c:.5g}" for c in r["principal_inertia_kg_mm2"]))
     return table
+
+
+def _vec(v: list[float]) -> str:
+    return "(" + ", ".join(f"{x:g}" for x in v) + ")"

@@ -80,3 +80,25 @@ class RigidWallDef:
     offset: float = 0.0
     title: str = ""
     source: Source = field(default_factory=Source)
+
+
+def loads_summary(model) -> dict[str, list[dict]]:  # noqa: ANN001 - Model
+    """For ``hollowbody check``: {"loads": [{kind, dof or axis, curve, sf, target}],
+    "rigid_walls": [{rwid, point, normal, nodes, fric}]} (ids as in the deck)."""
+    axes = "xyz"
+    loads = []
+    for ld in model.loads:
+        if isinstance(ld, BodyLoad):
+            loads.append({"kind": f"LOAD_BODY_{axes[ld.axis].upper()}", "curve": ld.lcid,
+                          "sf": ld.sf, "target": "all parts" if ld.pids is None else
+                          f"parts {', '.join(map(str, ld.pids))}"})
+        elif isinstance(ld, NodeLoad):
+            loads.append({"kind": "LOAD_NODE", "dof": ld.dof, "curve": ld.lcid, "sf": ld.sf,
+                          "target": f"{ld.nodes.size} node(s)"})
+        elif isinstance(ld, RigidBodyLoad):
+            loads.append({"kind": "LOAD_RIGID_BODY", "dof": ld.dof, "curve": ld.lcid,
+                          "sf": ld.sf, "target": f"part {ld.pid}"})
+    walls = [{"rwid": w.rwid, "point": [float(v) for v in w.tail],
+              "normal": [float(v) for v in w.normal], "nodes": int(w.nodes.size),
+              "fric": float(w.fric)} for w in model.rigid_walls]
+    return {"loads": loads, "rigid_walls": walls}

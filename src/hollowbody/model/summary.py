@@ -17,6 +17,7 @@ import numpy as np
 from hollowbody.errors import DeckError
 from hollowbody.model.discrete import LAW_NAMES
 from hollowbody.model.joints import joint_summary
+from hollowbody.model.loads import loads_summary
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas
 from hollowbody.model.model import Model
 from hollowbody.model.rigid_bodies import rigid_body_summary
@@ -190,6 +191,7 @@ def summarize(model: Model) -> dict:
         "contacts": len(model.contacts),
         "tied_contacts": len(model.tied_contacts),
         **joint_summary(model),
+        **loads_summary(model),
         "unsupported": unsupported_entries(model),
         "rigid_bodies": _rigid_bodies(model, node_mass),
     }
