@@ -6,7 +6,9 @@ and shell elements of every part, rigid ones included, part titles);
 runtimes: solid stress (global, GPa) and alive flags; shell stress at the
 inner, middle and outer layer (the first, middle and last through-thickness
 point; global axes, GPa), plastic strain per layer, thickness, alive flags;
-global energies. Rigid parts have no runtime: zero stress, alive.
+global energies; beams: axial force, shear forces, torsion and bending moments
+(the section resultants), alive flags. Rigid parts have no runtime: zero stress,
+alive. Discrete elements are not written.
 Written through :mod:`hollowbody.io.results.d3plot` (optional extra lasso-python).
 """
 
@@ -37,10 +39,18 @@ def make_series(out: Path, model, asm) -> D3plotSeries:  # noqa: ANN001 - Model,
 
     sc, sp, si = block(model.solid_groups, 8)
     hc, hp, hi = block(model.shell_groups, 4)
+    beams = [g for g in model.beam_groups if g.conn.shape[0]]
+    bc = bp = bi = None
+    if beams:
+        bc = np.concatenate([g.conn for g in beams]).astype(np.int64)
+        bc[:, 2] = np.where(bc[:, 2] >= 0, bc[:, 2], bc[:, 1])  # no N3: N2, as LS-DYNA
+        bp = np.concatenate([np.full(g.conn.shape[0], index[g.pid]) for g in beams])
+        bi = np.concatenate([g.elem_ids for g in beams]).astype(np.int64)
     geometry = Geometry(node_ids=model.node_ids, x0=asm.node_x0, solid_conn=sc, solid_part=sp,
                         solid_ids=si, shell_conn=hc, shell_part=hp, shell_ids=hi,
                         part_ids=pids,
-                        part_titles=[model.parts[int(p)].title or f"part {p}" for p in pids])
+                        part_titles=[model.parts[int(p)].title or f"part {p}" for p in pids],
+                        beam_conn=bc, beam_part=bp, beam_ids=bi)
     return D3plotSeries(Path(out) / FILE_NAME, geometry)
 
 
@@ -111,10 +121,18 @@ def state_fields(model, asm, state) -> StateFields:  # noqa: ANN001 - Model, Ass
     def cat(parts: list, shape: tuple[int, ...]) -> np.ndarray:
         return np.concatenate(parts) if parts else np.zeros(shape)
 
+    beam_rts = [rt for rt in asm.elements if getattr(rt, "family", "") == "beams"]
+    by_pid = {rt.pid: rt for rt in beam_rts}
+    beams = [g for g in model.beam_groups if g.conn.shape[0]]
+    b_res = b_alive = None
+    if beams:  # the beam runtimes' order may differ from the Model's groups
+        b_res = np.concatenate([by_pid[g.pid].resultants for g in beams])
+        b_alive = np.concatenate([by_pid[g.pid].alive for g in beams])
     en = energies(asm, state)
     return StateFields(t=state.t, x=state.x, v=state.v,
                        solid_stress=cat(s_stress, (0, 6)), solid_eps=cat(s_eps, (0,)),
                        solid_alive=cat(s_alive, (0,)), shell_stress=cat(h_stress, (0, 3, 6)),
                        shell_eps=cat(h_eps, (0, 3)), shell_thickness=cat(h_thick, (0,)),
                        shell_alive=cat(h_alive, (0,)), kinetic=en["kinetic"],
-                       internal=en["internal"] + en["hourglass"], total=en["total"])
+                       internal=en["internal"] + en["hourglass"], total=en["total"],
+                       beam_resultants=b_res, beam_alive=b_alive)

@@ -40,7 +40,9 @@ def available() -> bool:
 class StateFields:
     """One state: t ms; x, v (n, 3) mm, mm/ms; solid_stress (s, 6) GPa, solid_eps (s,),
     solid_alive (s,) bool; shell_stress (h, 3, 6) GPa, shell_eps (h, 3), shell_thickness
-    (h,) mm, shell_alive (h,) bool; kinetic, internal, total J."""
+    (h,) mm, shell_alive (h,) bool; kinetic, internal, total J; beam_resultants (b, 6):
+    axial force, shear forces s and t (kN), torsion, bending moments s and t (kN*mm),
+    beam_alive (b,) bool (None: no beams)."""
 
     t: float
     x: np.ndarray
@@ -55,13 +57,16 @@ class StateFields:
     kinetic: float
     internal: float
     total: float
+    beam_resultants: np.ndarray | None = None
+    beam_alive: np.ndarray | None = None
 
 
 @dataclass
 class Geometry:
     """Mesh of the d3plot: node_ids (n,), x0 (n, 3) mm; solid_conn (s, 8) node indices,
     solid_part (s,) part index, solid_ids (s,); shell_conn (h, 4), shell_part, shell_ids;
-    part_ids (p,) sorted, part_titles (p,) str."""
+    part_ids (p,) sorted, part_titles (p,) str; beam_conn (b, 3) N1 N2 N3 (the
+    orientation node; N2 where there is none), beam_part, beam_ids (None: no beams)."""
 
     node_ids: np.ndarray
     x0: np.ndarray
@@ -73,6 +78,9 @@ class Geometry:
     shell_ids: np.ndarray
     part_ids: np.ndarray
     part_titles: list[str]
+    beam_conn: np.ndarray | None = None  # (b, 3) N1 N2 N3 node indices
+    beam_part: np.ndarray | None = None  # (b,)
+    beam_ids: np.ndarray | None = None  # (b,)
 
 
 class D3plotSeries:
@@ -95,7 +103,10 @@ class D3plotSeries:
             shell_stress=state.shell_stress.astype(f32), shell_eps=state.shell_eps.astype(f32),
             shell_thickness=state.shell_thickness.astype(f32),
             shell_alive=state.shell_alive.astype(bool), kinetic=float(state.kinetic),
-            internal=float(state.internal), total=float(state.total)))
+            internal=float(state.internal), total=float(state.total),
+            beam_resultants=(None if state.beam_resultants is None
+                             else state.beam_resultants.astype(f32)),
+            beam_alive=None if state.beam_alive is None else state.beam_alive.astype(bool)))
 
     def resume(self, count: int) -> None:
         """Read the first ``count`` states of the existing file back (a resumed run)."""
@@ -108,7 +119,14 @@ class D3plotSeries:
         arr = d.arrays
         g = self.geometry
         n_s, n_h = g.solid_ids.size, g.shell_ids.size
+        n_b = 0 if g.beam_ids is None else g.beam_ids.size
         for k in range(min(count, arr[A.global_timesteps].size)):
+            beams = None
+            if n_b:
+                beams = np.column_stack([
+                    arr[A.element_beam_axial_force][k], arr[A.element_beam_shear_force][k],
+                    arr[A.element_beam_torsion_moment][k],
+                    arr[A.element_beam_bending_moment][k]])
             self.add(StateFields(
                 t=arr[A.global_timesteps][k], x=arr[A.node_displacement][k],
                 v=arr[A.node_velocity][k],
@@ -123,7 +141,8 @@ class D3plotSeries:
                 shell_alive=(arr[A.element_shell_is_alive][k] if n_h else np.zeros(0)) > 0.5,
                 kinetic=arr[A.global_kinetic_energy][k],
                 internal=arr[A.global_internal_energy][k],
-                total=arr[A.global_total_energy][k]))
+                total=arr[A.global_total_energy][k], beam_resultants=beams,
+                beam_alive=(arr[A.element_beam_is_alive][k] > 0.5) if n_b else None))
 
     def write(self) -> None:
         """Write every state kept so far into ``path`` (replaces the file)."""
@@ -165,6 +184,19 @@ class D3plotSeries:
             a[A.element_shell_effective_plastic_strain] = np.stack([s.shell_eps for s in st])
             a[A.element_shell_thickness] = np.stack([s.shell_thickness for s in st])
             a[A.element_shell_is_alive] = np.stack([s.shell_alive for s in st]).astype(
+                np.float32)
+        if g.beam_ids is not None and g.beam_ids.size:
+            c = g.beam_conn.astype(np.int32)
+            a[A.element_beam_node_indexes] = np.column_stack(
+                [c, np.zeros((c.shape[0], 2), np.int32)])
+            a[A.element_beam_part_indexes] = g.beam_part.astype(np.int32)
+            a[A.element_beam_ids] = g.beam_ids.astype(np.int32)
+            r = np.stack([s.beam_resultants for s in st])
+            a[A.element_beam_axial_force] = r[:, :, 0]
+            a[A.element_beam_shear_force] = r[:, :, 1:3]
+            a[A.element_beam_torsion_moment] = r[:, :, 3]
+            a[A.element_beam_bending_moment] = r[:, :, 4:6]
+            a[A.element_beam_is_alive] = np.stack([s.beam_alive for s in st]).astype(
                 np.float32)
         # LS-DYNA's family of files: the geometry in ``d3plot``, the states in
         # ``d3plot01`` (lasso removes the earlier family first)
