@@ -1,0 +1,104 @@
+"""OpenRadioss's engine listing (``ROOT_0001.out``): cycles, energies, termination.
+
+The engine prints a table row every /PRINT cycles::
+
+    CYCLE    TIME      TIME-STEP  ELEMENT          ERROR  I-ENERGY    K-ENERGY T  K-ENERGY R  EXT-WORK    MAS.ERR
+        10  0.1000E-01  0.1000E-02 BRICK        12  0.0%  0.0000E+00  0.1250E+02  0.0000E+00  0.0000E+00  0.0000E+00
+
+(cycle, time, time step, the element type and id that set it, the energy error
+in %, internal, translational and rotational kinetic energy, external work,
+mass error) and ends with ``NORMAL TERMINATION`` or ``ERROR TERMINATION``; a
+solid that inverts is reported on a line with ``NEGATIVE VOLUME`` and its
+element id. The rows become glstat.csv rows (deck units: J, ms); hourglass and
+contact energies are not in the table (NaN), the energy ratio is hollowbody's
+(total / (initial total + external work)).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
+from hollowbody.engines.lsdyna_status import ERROR, NORMAL, UNKNOWN
+
+_NUM = r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[EeDd][-+]?\d+)?"
+_ROW = re.compile(r"^\s*(\d+)\s+(" + _NUM + r")\s+(" + _NUM + r")\s+([A-Z_0-9]+)\s+(\d+)\s+("
+                  + _NUM + r")\s*%\s+(" + _NUM + r")\s+(" + _NUM + r")\s+(" + _NUM + r")\s+("
+                  + _NUM + r")(?:\s+(" + _NUM + r"))?")
+
+
+@dataclass
+class RadiossListing:
+    """status, reason and where (element, time_ms, cycle) of the run's end; rows of
+    glstat.csv (:data:`GLSTAT_ORDER`); the engine's version banner; the last cycle
+    and time (ms) of the table; the element type and id that set the last step."""
+
+    status: str = UNKNOWN
+    reason: str = "no termination message (the run did not finish, or its listing is missing)"
+    where: dict = field(default_factory=dict)
+    rows: list[list[float]] = field(default_factory=list)
+    version: str | None = None
+    cycles: int | None = None
+    end_time_ms: float | None = None
+    dt_element: tuple[str, int] | None = None
+
+
+def _f(s: str) -> float:
+    return float(s.replace("D", "E").replace("d", "e"))
+
+
+def parse_listing(text: str) -> RadiossListing:
+    """Read the engine listing's text."""
+    out = RadiossListing()
+    e0: float | None = None
+    for line in text.splitlines():
+        up = line.upper()
+        if out.version is None and "OPENRADIOSS" in up:
+            v = line.strip().strip("*").strip()
+            if v:
+                out.version = v
+        m = _ROW.match(line)
+        if m:
+            cyc, t, dt = int(m.group(1)), _f(m.group(2)), _f(m.group(3))
+            ie, ket, ker, work = (_f(m.group(k)) for k in (7, 8, 9, 10))
+            total = ie + ket + ker
+            if e0 is None:
+                e0 = total
+            denom = e0 + work
+            ratio = total / denom if denom != 0.0 else math.nan
+            row = {"time [ms]": t, "cycle": float(cyc), "dt [ms]": dt, "kinetic [J]": ket + ker,
+                   "internal [J]": ie, "external_work [J]": work, "total [J]": total,
+                   "energy_ratio": ratio}
+            out.rows.append([row.get(c, math.nan) for c in GLSTAT_ORDER])
+            out.cycles, out.end_time_ms = cyc, t
+            out.dt_element = (m.group(4), int(m.group(5)))
+            continue
+        sq = re.sub(r"\s+", "", up)
+        if "NEGATIVEVOLUME" in sq and "element" not in out.where:
+            m = re.search(r"(?:ELEMENT|BRICK|SOLID)\D{0,24}?(\d+)", up)
+            if m:
+                out.where["element"] = int(m.group(1))
+            if out.end_time_ms is not None:
+                out.where["time_ms"] = out.end_time_ms
+                out.where["cycle"] = out.cycles
+            elem = out.where.get("element", "?")
+            out.reason = f"negative volume in solid element {elem}" + (
+                f" near t={out.end_time_ms:.6g} ms" if out.end_time_ms is not None else "")
+        if "NORMALTERMINATION" in sq:
+            out.status, out.reason = NORMAL, "normal termination"
+        elif "ERRORTERMINATION" in sq:
+            if "element" not in out.where:
+                out.reason = "error termination"
+            out.status = ERROR
+    return out
+
+
+def read_listing(path: str | Path) -> RadiossListing:
+    """:func:`parse_listing` of a listing file (an empty result when it is missing)."""
+    p = Path(path)
+    if not p.is_file():
+        return RadiossListing()
+    return parse_listing(p.read_text(encoding="latin-1", errors="replace"))
