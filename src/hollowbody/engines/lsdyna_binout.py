@@ -52,6 +52,19 @@ def _has(binout, name: str) -> bool:
         return False
 
 
+def _variables(binout, db: str) -> set[str]:
+    """Names of the variables of database ``db`` (lasso lists the ``dNNNNNN`` state
+    folders instead when the database has no metadata folder)."""
+    names = list(binout.read(db))
+    states = [n for n in names if len(n) == 7 and n[0] == "d" and n[1:].isdigit()]
+    found = {n for n in names if n not in states and n != "metadata"}
+    if states:
+        found |= set(binout.read(db, sorted(states)[0]))
+    if "metadata" in names:
+        found |= set(binout.read(db, "metadata"))
+    return found
+
+
 def glstat_rows(binout) -> list[list[float]]:
     """Rows of glstat.csv from the binout's glstat (NaN where it has no variable)."""
     if not _has(binout, "glstat"):
@@ -61,7 +74,7 @@ def glstat_rows(binout) -> list[list[float]]:
         return []
     n = t.shape[0]
     cols = {c: np.full(n, math.nan) for c in GLSTAT_ORDER}
-    names = set(binout.read("glstat"))
+    names = _variables(binout, "glstat")
     for var, col in GLSTAT_VARIABLES.items():
         if var in names:
             a = _read(binout, "glstat", var)

@@ -1,9 +1,10 @@
 """OpenRadioss's engine listing (``ROOT_0001.out``): cycles, energies, termination.
 
-The engine prints a table row every /PRINT cycles::
+The engine prints a table row every /PRINT cycles, under the header ``CYCLE
+TIME TIME-STEP ELEMENT ERROR I-ENERGY K-ENERGY T K-ENERGY R EXT-WORK MAS.ERR``::
 
-    CYCLE    TIME      TIME-STEP  ELEMENT          ERROR  I-ENERGY    K-ENERGY T  K-ENERGY R  EXT-WORK    MAS.ERR
-        10  0.1000E-01  0.1000E-02 BRICK        12  0.0%  0.0000E+00  0.1250E+02  0.0000E+00  0.0000E+00  0.0000E+00
+    10  0.1000E-01  0.1000E-02 BRICK   12  0.0%  0.0000E+00  0.1250E+02  0.0000E+00
+        0.0000E+00  0.0000E+00   (one line in the listing)
 
 (cycle, time, time step, the element type and id that set it, the energy error
 in %, internal, translational and rotational kinetic energy, external work,
