@@ -1,0 +1,136 @@
+"""What OpenRadioss gets from a hollowbody deck (the rewritten keyword deck and the
+engine file) and the reading of its engine listing.
+
+The listings below are SYNTHETIC, in the layout of OpenRadioss's engine listing
+(ROOT_0001.out: the cycle table and the termination line); they test the
+parser, not the engine. The engine file's keywords and cards are those of
+OpenRadioss's engine input reference (/RUN, /TFILE, /ANIM/DT, /PRINT,
+/DT/Eltyp/STOP).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
+from hollowbody.engines.lsdyna_status import ERROR, NORMAL, UNKNOWN
+from hollowbody.engines.radioss_deck import (
+    EngineSettings,
+    engine_file_text,
+    engine_settings,
+    rewrite_for_openradioss,
+)
+from hollowbody.engines.radioss_listing import parse_listing, read_listing
+from hollowbody.errors import DeckError
+from hollowbody.io.keyword import read_deck, write_deck
+from hollowbody.testing.decks import box_deck
+
+BLOCK = Path(__file__).parents[2] / "regression" / "decks" / "block" / "main.k"
+
+LISTING = """\
+ ********************************************************************************
+ **                                                                            **
+ **                          OpenRadioss Engine                                 **
+ **                                                                            **
+ ********************************************************************************
+
+     CYCLE    TIME      TIME-STEP  ELEMENT          ERROR  I-ENERGY    K-ENERGY T  K-ENERGY R  EXT-WORK     MAS.ERR
+         0  0.0000E+00  0.1000E-03 BRICK          12   0.0%  0.0000E+00  0.1250E+02  0.0000E+00  0.0000E+00  0.0000E+00
+       100  0.1000E-01  0.9900E-04 BRICK          12  -0.1%  0.5000E+00  0.1200E+02  0.0000E+00  0.1000E-01  0.0000E+00
+"""
+
+
+def test_listing_normal_termination_and_glstat_rows():
+    lst = parse_listing(LISTING + "\n  NORMAL TERMINATION\n")
+    assert (lst.status, lst.reason) == (NORMAL, "normal termination")
+    assert lst.version == "OpenRadioss Engine"
+    assert lst.cycles == 100 and lst.end_time_ms == pytest.approx(0.01)
+    assert lst.dt_element == ("BRICK", 12)
+    r0, r1 = (dict(zip(GLSTAT_ORDER, r)) for r in lst.rows)
+    assert r1["cycle"] == 100 and r1["dt [ms]"] == pytest.approx(9.9e-5)
+    assert r1["kinetic [J]"] == 12.0 and r1["internal [J]"] == 0.5
+    assert r1["external_work [J]"] == 0.01 and r1["total [J]"] == 12.5
+    # hollowbody's ratio: total / (initial total + external work) = 12.5 / 12.51
+    assert r1["energy_ratio"] == pytest.approx(12.5 / 12.51, rel=1e-12)
+    assert r0["energy_ratio"] == 1.0
+    assert math.isnan(r1["hourglass [J]"]) and math.isnan(r1["contact [J]"])
+
+
+def test_listing_error_termination_on_negative_volume():
+    lst = parse_listing(LISTING + " ** ERROR : NEGATIVE VOLUME FOR SOLID ELEMENT ID=   345\n"
+                        "  ERROR TERMINATION\n")
+    assert lst.status == ERROR
+    assert lst.where == {"element": 345, "time_ms": 0.01, "cycle": 100}
+    assert lst.reason == "negative volume in solid element 345 near t=0.01 ms"
+
+
+def test_listing_missing_or_unfinished(tmp_path):
+    assert read_listing(tmp_path / "none_0001.out").status == UNKNOWN
+    assert parse_listing(LISTING).status == UNKNOWN
+
+
+def _box_with(tmp_path, extra: str) -> Path:
+    deck = tmp_path / "box.k"
+    write_deck(box_deck(h=30.0), deck)
+    text = deck.read_text().replace("*END", extra + "*END")
+    deck.write_text(text)
+    return deck
+
+
+def test_a_deck_with_a_contact_is_refused_naming_file_line_and_keyword(tmp_path):
+    deck = _box_with(tmp_path, "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n"
+                               "         1         0         2\n\n\n")
+    line = deck.read_text().splitlines().index("*CONTACT_AUTOMATIC_SINGLE_SURFACE") + 1
+    with pytest.raises(DeckError) as err:
+        rewrite_for_openradioss(deck, tmp_path / "out" / "box.k")
+    assert err.value.file == str(deck) and err.value.line in (line, line + 1)
+    assert err.value.keyword.startswith("CONTACT_AUTOMATIC_SINGLE_SURFACE")
+    assert "error 2087" in str(err.value)
+    assert not (tmp_path / "out" / "box.k").exists()
+
+
+def test_rewrite_inlines_includes_and_drops_control_contact(tmp_path):
+    out, notes = rewrite_for_openradioss(BLOCK, tmp_path / "main.k")
+    text = out.read_text()
+    assert "*INCLUDE" not in text and "*NODE" in text and "*ELEMENT_SOLID" in text
+    assert any("include" in n for n in notes)
+    assert read_deck(out) is not None  # the written deck reads back
+    deck = _box_with(tmp_path, "*CONTROL_CONTACT\n       0.1\n")
+    out, notes = rewrite_for_openradioss(deck, tmp_path / "box2.k")
+    assert "*CONTROL_CONTACT" not in out.read_text()
+    assert any("*CONTROL_CONTACT" in n for n in notes)
+
+
+def test_engine_settings_and_file_text(tmp_path):
+    deck = _box_with(tmp_path, "*CONTROL_TIMESTEP\n       0.0      0.67\n"
+                               "*DATABASE_GLSTAT\n     0.001\n"
+                               "*DATABASE_BINARY_D3PLOT\n      0.05\n")
+    parsed = read_deck(deck)
+    s = engine_settings(parsed)
+    assert s == EngineSettings(end_time=1.0, history_dt=0.001, anim_dt=0.05, tssfac=0.67)
+    body = engine_file_text("box", s, "box.k").splitlines()
+    assert body[1:3] == ["/RUN/box/1", f"{1.0:20.6g}"]
+    assert body[3:5] == ["/TFILE", f"{0.001:20.6g}"]
+    assert body[5:7] == ["/ANIM/DT", f"{0.0:20.6g}{0.05:20.6g}"]
+    assert "/TH/TITLE" in body and "/PRINT/-100" in body
+    assert not any(b.startswith("/DT/") for b in body)
+
+
+def test_dtmin_becomes_an_absolute_minimum_step(tmp_path):
+    deck = box_deck(h=30.0)
+    from hollowbody.io.keyword import ControlTermination
+
+    deck.of_type(ControlTermination)[0].dtmin = 0.1
+    s = engine_settings(deck, dt0=2.0e-4)
+    assert s.dtmin_abs == pytest.approx(2.0e-5)
+    body = engine_file_text("box", s).splitlines()
+    i = body.index("/DT/BRICK/STOP")
+    assert body[i + 1] == f"{0.9:20.6g}{2.0e-5:20.6g}"
+    assert body[body.index("/DT/SHELL/STOP") + 1] == body[i + 1]
+    # without the initial step there is no minimum
+    assert engine_settings(deck).dtmin_abs == 0.0
+    # defaults when the deck asks for no output: end / 500 and end / 20
+    assert (s.history_dt, s.anim_dt) == (1.0 / 500, 1.0 / 20)
