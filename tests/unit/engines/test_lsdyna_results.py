@@ -8,6 +8,9 @@ binout is written with lasso-python's own LSDA writer in the folder layout
 LS-DYNA uses (/glstat/d000001/time, ...).
 """
 
+# The synthetic listings keep the engines' line widths (over 100 characters).
+# ruff: noqa: E501
+
 from __future__ import annotations
 
 import json

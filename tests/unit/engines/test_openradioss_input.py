@@ -8,6 +8,9 @@ OpenRadioss's engine input reference (/RUN, /TFILE, /ANIM/DT, /PRINT,
 /DT/Eltyp/STOP).
 """
 
+# The synthetic listings keep the engines' line widths (over 100 characters).
+# ruff: noqa: E501
+
 from __future__ import annotations
 
 import math

@@ -4,10 +4,10 @@ OpenRadioss is found through OPENRADIOSS_PATH or the PATH, LS-DYNA through
 LSDYNA or the PATH (docs/engines.md). The deck is the worked example
 ``examples/loads/block_drop.k`` (no contact, which OpenRadioss's keyword
 translation refuses): a block dropped onto a rigid wall for 60 ms. The run must
-end normally and write hollowbody's glstat.csv and summary.json; the block's
-kinetic energy at the start is that of the deck's own model (the engine reads
-the same masses and velocities), within 1 % (the engines lump the masses as
-hollowbody does; 1 % covers the first output being one step after t = 0).
+end normally at the deck's end time and write hollowbody's glstat.csv and
+summary.json, with a total energy within 5 % of the initial energy plus the
+external work at the end (the run's energy balance; 5 % because the engine's
+external work of gravity and the wall differ in how they are counted).
 """
 
 from __future__ import annotations
@@ -32,7 +32,6 @@ def _installed(find) -> str | None:
     return None
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("engine, find", [("openradioss", find_openradioss),
                                           ("lsdyna", find_lsdyna)])
 def test_example_runs_to_normal_termination_on_the_engine(engine, find, tmp_path):
