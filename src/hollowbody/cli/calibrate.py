@@ -112,7 +112,7 @@ def add_cluster_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--job-memory", default=None, metavar="SIZE",
                    help="memory per job, e.g. 8GB (default: 2 GB per core)")
     g.add_argument("--dry-run", action="store_true",
-                   help="with --cluster: print the job script and submit nothing")
+                   help="with --cluster: print the job script and submit nothing (default: submit)")
 
 
 def slurm_spec(args: argparse.Namespace):
