@@ -160,7 +160,7 @@ def lsdyna_memory(nodes: int, elements: int, np_: int = 1) -> tuple[int, int]:
     node + 600 per element for the whole model (``memory``: SMP, and rank 0 of
     MPP which decomposes it), and 20 M words + the whole model's share per rank
     for ``memory2``; both rounded up to whole M words. A 1.5 M-node, 1.3 M-element
-    body model: memory 1250 M words (10 GB), memory2 on 16 ranks 98 M words.
+    body model: memory 1250 M words (10 GB), memory2 on 16 ranks 97 M words.
     """
     whole = WORDS_PER_NODE * max(nodes, 0) + WORDS_PER_ELEMENT * max(elements, 0)
     mem = BASE_WORDS + whole
