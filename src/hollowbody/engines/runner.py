@@ -245,7 +245,7 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
 
     out = prep.plan.workdir
     root = radioss_root(prep.plan.deck)
-    lst = read_listing(out / f"{root}_0001.out")
+    lst = read_listing(out / f"{root}_0001.out", out / f"{root}_engine.log")
     status, reason = lst.status, lst.reason
     if codes.get("starter", 0) != 0:
         status, reason = ERROR, (f"the starter stopped (exit code {codes['starter']}); see "

@@ -2,8 +2,8 @@
 engine file) and the reading of its engine listing.
 
 The listings below are SYNTHETIC, in the layout of OpenRadioss's engine listing
-(ROOT_0001.out: the cycle table and the termination line); they test the
-parser, not the engine. The engine file's keywords and cards are those of
+(ROOT_0001.out: the cycle table in the engine's fixed format, its stop messages
+and the termination lines); they test the parser, not the engine. The engine file's keywords and cards are those of
 OpenRadioss's engine input reference (/RUN, /TFILE, /ANIM/DT, /PRINT,
 /DT/Eltyp/STOP).
 """
@@ -34,23 +34,20 @@ from hollowbody.testing.decks import box_deck
 BLOCK = Path(__file__).parents[2] / "regression" / "decks" / "block" / "main.k"
 
 LISTING = """\
- ********************************************************************************
- **                                                                            **
- **                          OpenRadioss Engine                                 **
- **                                                                            **
- ********************************************************************************
+ OpenRadioss Engine 2026.08.21
 
-     CYCLE    TIME      TIME-STEP  ELEMENT          ERROR  I-ENERGY    K-ENERGY T  K-ENERGY R  EXT-WORK     MAS.ERR
-         0  0.0000E+00  0.1000E-03 BRICK          12   0.0%  0.0000E+00  0.1250E+02  0.0000E+00  0.0000E+00  0.0000E+00
-       100  0.1000E-01  0.9900E-04 BRICK          12  -0.1%  0.5000E+00  0.1200E+02  0.0000E+00  0.1000E-01  0.0000E+00
+   CYCLE    TIME      TIME-STEP  ELEMENT          ERROR  I-ENERGY    K-ENERGY T  K-ENERGY R  EXT-WORK     MAS.ERR     TOTAL MASS  MASS ADDED
+       0  0.000      0.1000E-03 BRICK         12   0.0%  0.000       12.50      0.000       0.000       0.000      0.1000E-01  0.000
+     100  0.1000E-01 0.9900E-04 BRICK         12  -0.1%  0.5000      12.00      0.000      0.1000E-01  0.000      0.1000E-01 0.2000E-05
 """
 
 
 def test_listing_normal_termination_and_glstat_rows():
-    lst = parse_listing(LISTING + "\n  NORMAL TERMINATION\n")
+    lst = parse_listing(LISTING + "\n\n\n     NORMAL TERMINATION      \n"
+                        "     TOTAL NUMBER OF CYCLES  :     101\n")
     assert (lst.status, lst.reason) == (NORMAL, "normal termination")
-    assert lst.version == "OpenRadioss Engine"
-    assert lst.cycles == 100 and lst.end_time_ms == pytest.approx(0.01)
+    assert lst.version == "OpenRadioss Engine 2026.08.21"
+    assert lst.cycles == 101 and lst.end_time_ms == pytest.approx(0.01)
     assert lst.dt_element == ("BRICK", 12)
     r0, r1 = (dict(zip(GLSTAT_ORDER, r)) for r in lst.rows)
     assert r1["cycle"] == 100 and r1["dt [ms]"] == pytest.approx(9.9e-5)
@@ -60,14 +57,23 @@ def test_listing_normal_termination_and_glstat_rows():
     assert r1["energy_ratio"] == pytest.approx(12.5 / 12.51, rel=1e-12)
     assert r0["energy_ratio"] == 1.0
     assert math.isnan(r1["hourglass [J]"]) and math.isnan(r1["contact [J]"])
+    assert r1["added_mass [kg]"] == 2.0e-6 and r0["added_mass [kg]"] == 0.0
 
 
 def test_listing_error_termination_on_negative_volume():
-    lst = parse_listing(LISTING + " ** ERROR : NEGATIVE VOLUME FOR SOLID ELEMENT ID=   345\n"
-                        "  ERROR TERMINATION\n")
+    # an eroded element (WARNING / DELETE) does not end the run
+    eroded = " ** WARNING ZERO OR NEGATIVE VOLUME : DELETE 3D-ELEMENT ID: 77\n"
+    lst = parse_listing(LISTING + eroded + "\n ** STOP: ZERO OR NEGATIVE VOLUME FOR 3D-ELEMENT "
+                        "ID=345\n\n\n\n     ERROR TERMINATION\n")
     assert lst.status == ERROR
     assert lst.where == {"element": 345, "time_ms": 0.01, "cycle": 100}
     assert lst.reason == "negative volume in solid element 345 near t=0.01 ms"
+    # the id on the next line (tetrahedra, integration points)
+    lst = parse_listing(LISTING + " ** STOP: ZERO OR NEGATIVE VOLUME\n"
+                        "           FOR 4 NODES TETRAHEDRON ID=9, INTEGRATION POINT=1\n"
+                        "     ERROR TERMINATION\n")
+    assert lst.status == ERROR and lst.where["element"] == 9
+    assert parse_listing(LISTING + eroded + "     NORMAL TERMINATION\n").where == {}
 
 
 def test_listing_missing_or_unfinished(tmp_path):
