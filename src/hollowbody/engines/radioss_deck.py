@@ -19,9 +19,11 @@ not do as LS-DYNA does:
   Decks with contacts need native starter input (``/SURF/PART`` +
   ``/INTER/TYPE25``), which is not written yet.
 
-The engine file ``ROOT_0001.rad`` (OpenRadioss's engine input, written after the
-starter, in place of the one the starter derives from the deck) sets what the
-translation maps differently: the end time (``/RUN``), the time-history and
+The engine file ``ROOT_0001.rad`` (OpenRadioss's engine input) is the one the
+starter derives from the deck, merged after the starter with hollowbody's
+(:func:`merge_engine_files`: the starter's options are kept, e.g. mass
+scaling, except those hollowbody sets), which sets what the translation maps
+differently: the end time (``/RUN``), the time-history and
 animation intervals (``/TFILE``, ``/ANIM/DT`` from *DATABASE_GLSTAT and
 *DATABASE_BINARY_D3PLOT), the listing print interval (``/PRINT``), and DTMIN
 (LS-DYNA: stop when the step falls below DTMIN x the initial step; the
@@ -154,4 +156,44 @@ def engine_file_text(root: str, s: EngineSettings, source: str = "") -> str:
     if s.dtmin_abs > 0.0:
         for eltyp in ("BRICK", "SHELL"):
             lines += [f"/DT/{eltyp}/STOP", _num(s.tssfac) + _num(s.dtmin_abs)]
+    return "\n".join(lines) + "\n"
+
+
+def _blocks(text: str) -> list[tuple[str, list[str]]]:
+    """(keyword line, lines) blocks of an engine file; text before the first keyword
+    (comments) is dropped."""
+    out: list[tuple[str, list[str]]] = []
+    for line in text.splitlines():
+        if line.startswith("/"):
+            out.append((line.strip(), [line]))
+        elif out:
+            out[-1][1].append(line)
+    return out
+
+
+def _family(keyword: str) -> str:
+    """The option a block sets: ``/RUN``, ``/TFILE``, ``/PRINT``, ``/ANIM/DT``,
+    ``/DT/BRICK``, ... (``/DT/BRICK/STOP`` and ``/DT/BRICK/CST`` are one option),
+    or the keyword itself."""
+    parts = keyword.split("/")[1:]
+    head = parts[0].upper() if parts else ""
+    if head in ("RUN", "TFILE", "PRINT"):
+        return "/" + head
+    if head == "DT" and len(parts) > 1:
+        return "/DT/" + parts[1].upper()
+    if head == "ANIM" and len(parts) > 1 and parts[1].upper() == "DT":
+        return "/ANIM/DT"
+    return keyword.upper()
+
+
+def merge_engine_files(generated: str, ours: str) -> str:
+    """The engine file: hollowbody's options (``ours``) and the starter's (``generated``)
+    that hollowbody does not set; ``/RUN`` first, as the engine input requires."""
+    mine = _blocks(ours)
+    taken = {_family(k) for k, _ in mine}
+    kept = [b for b in _blocks(generated) if _family(b[0]) not in taken]
+    run = [b for b in mine if _family(b[0]) == "/RUN"]
+    rest = [b for b in mine if _family(b[0]) != "/RUN"]
+    head = [line for line in ours.splitlines() if line.startswith("#")][:1]
+    lines = head + [line for _, block in run + kept + rest for line in block]
     return "\n".join(lines) + "\n"

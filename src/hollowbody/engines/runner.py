@@ -54,7 +54,8 @@ class Prepared:
         extra = [f"note: {n}" for n in self.notes]
         if self.engine_file is not None:
             name, body = self.engine_file
-            extra.append(f"[engine file] {self.plan.workdir / name} (written after the starter):")
+            extra.append(f"[engine file] {self.plan.workdir / name} (merged after the starter "
+                         "with the one it writes; these options replace the starter's):")
             extra += ["  " + line for line in body.splitlines()]
         return "\n".join([text, *extra])
 
@@ -225,8 +226,13 @@ def execute(prep: Prepared, quiet: bool = True) -> dict:
     codes: dict[str, int] = {}
     for cmd in plan.commands:
         if cmd.step == "engine" and prep.engine_file is not None:
+            from hollowbody.engines.radioss_deck import merge_engine_files
+
             name, text = prep.engine_file
-            (out / name).write_text(text)
+            generated = out / name
+            if generated.is_file():  # the starter's translation of the deck's controls
+                text = merge_engine_files(generated.read_text(errors="replace"), text)
+            generated.write_text(text)
         listing = out / f"{radioss_root(plan.deck)}_0001.out" if cmd.step == "engine" else None
         codes[cmd.step] = _run(cmd, quiet=quiet, listing=listing)
         if cmd.step == "starter" and codes[cmd.step] != 0:

@@ -24,6 +24,7 @@ from hollowbody.engines.radioss_deck import (
     EngineSettings,
     engine_file_text,
     engine_settings,
+    merge_engine_files,
     rewrite_for_openradioss,
 )
 from hollowbody.engines.radioss_listing import parse_listing, read_listing
@@ -143,3 +144,19 @@ def test_dtmin_becomes_an_absolute_minimum_step(tmp_path):
     assert engine_settings(deck).dtmin_abs == 0.0
     # defaults when the deck asks for no output: end / 500 and end / 20
     assert (s.history_dt, s.anim_dt) == (1.0 / 500, 1.0 / 20)
+
+
+def test_engine_file_merged_with_the_starters():
+    # a synthetic engine file as the starter writes it from a deck's controls
+    generated = ("#RADIOSS ENGINE\n/RUN/box/1\n                 2.0\n/ANIM/DT\n 0.0 0.5\n"
+                 "/DT/NODA/CST/0\n 0.67 1.0E-4\n/DT/BRICK/CST\n 0.9 1.0E-6\n/ANIM/ELEM/ENER\n")
+    ours = engine_file_text("box", EngineSettings(end_time=1.0, history_dt=0.01, anim_dt=0.1,
+                                                  dtmin_abs=1e-5), "box.k")
+    merged = merge_engine_files(generated, ours).splitlines()
+    assert merged[0].startswith("# OpenRadioss engine input written by hollowbody")
+    assert merged[1:3] == ["/RUN/box/1", f"{1.0:20.6g}"]  # ours, first
+    assert merged.count("/ANIM/DT") == 1 and f"{0.0:20.6g}{0.1:20.6g}" in merged
+    assert "/DT/NODA/CST/0" in merged and " 0.67 1.0E-4" in merged  # the starter's, kept
+    assert "/DT/BRICK/CST" not in merged and "/DT/BRICK/STOP" in merged  # ours replaces it
+    assert "/ANIM/ELEM/ENER" in merged and "/TH/TITLE" in merged
+    assert " 0.9 1.0E-6" not in merged
