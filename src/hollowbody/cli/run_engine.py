@@ -69,6 +69,11 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.engines.runner import execute, plan_run
     from hollowbody.solver.outputs import prepare_out_dir
 
+    for flag, value in (("--restart", args.restart), ("--dump-cycles", args.dump_cycles),
+                        ("--erode", args.erode), ("--quality", args.quality)):
+        if value is not None:
+            raise UserInputError(f"{flag} is an option of hollowbody's own engine; not "
+                                 f"supported with --engine {args.engine}")
     out = _out(args)
     np_ = int(args.np)
     threads = _threads(args.threads)
@@ -77,7 +82,7 @@ def main(args: argparse.Namespace) -> int:
         prepare_out_dir(out, args.overwrite, (args.deck,))
     prep = plan_run(args.engine, args.deck, out, np_=np_, threads=threads,
                     engine_path=args.engine_path, dry_run=args.dry_run, memory=memory,
-                    write=not args.dry_run)
+                    write=not args.dry_run, end_time=args.end_time)
     if args.dry_run:
         print(prep.describe())
         return 0

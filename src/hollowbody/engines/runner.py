@@ -109,10 +109,12 @@ def initial_step(model) -> float:  # noqa: ANN001 - Model
 
 def plan_run(engine: str, deck: Path, out: Path, np_: int = 1, threads: int = 1,
              engine_path: str | Path | None = None, dry_run: bool = False,
-             memory: tuple[int, int] | None = None, write: bool = True) -> Prepared:
+             memory: tuple[int, int] | None = None, write: bool = True,
+             end_time: float | None = None) -> Prepared:
     """Prepare the run of ``deck`` on ``engine`` (``openradioss`` or ``lsdyna``) in
     folder ``out``: find the engine (EngineNotFound unless ``dry_run``), write the deck
-    it reads into ``out`` (``write``), build the command lines."""
+    it reads into ``out`` (``write``), build the command lines. end_time (ms):
+    instead of the deck's ENDTIM."""
     from hollowbody.engines import radioss_deck
     from hollowbody.io.keyword import read_deck
 
@@ -139,6 +141,9 @@ def plan_run(engine: str, deck: Path, out: Path, np_: int = 1, threads: int = 1,
         _, _, model = model_size(deck)
         dt0 = initial_step(model) if model.controls.dtmin > 0.0 else None
         settings = radioss_deck.engine_settings(parsed, dt0)
+        if end_time is not None:
+            settings = radioss_deck.EngineSettings(**{**settings.__dict__,
+                                                      "end_time": float(end_time)})
         if write:
             out.mkdir(parents=True, exist_ok=True)
             _, changes = radioss_deck.rewrite_for_openradioss(deck, engine_deck)
@@ -165,13 +170,21 @@ def plan_run(engine: str, deck: Path, out: Path, np_: int = 1, threads: int = 1,
             memory = lsdyna_memory(nodes, elements, np_)
             notes.append(f"memory from the model size: {nodes} nodes, {elements} elements "
                          "(docs/engines.md)")
+        end = model.controls.end_time if end_time is None else float(end_time)
         if write:
-            from hollowbody.io.keyword import write_deck
+            from hollowbody.io.keyword import ControlTermination, write_deck
 
             out.mkdir(parents=True, exist_ok=True)
-            write_deck(read_deck(deck), engine_deck, flatten=True)
+            parsed = read_deck(deck)
+            if end_time is not None:
+                for item in parsed.of_type(ControlTermination) or \
+                        [parsed.add(ControlTermination())]:
+                    item.endtim = end
+            write_deck(parsed, engine_deck, flatten=True)
+        if end_time is not None:
+            notes.append(f"*CONTROL_TERMINATION ENDTIM set to {end:g} ms (--end-time)")
         plan = lsdyna_plan(ls, engine_deck, out, np_, threads, memory)
-        return Prepared(plan, None, notes, model.controls.end_time, found)
+        return Prepared(plan, None, notes, end, found)
     raise UserInputError(f"unknown engine {engine!r}: choose hollowbody, openradioss or lsdyna")
 
 

@@ -75,9 +75,39 @@ def test_dry_run_of_the_embedded_engine(tmp_path, capsys):
     (["--np", "0"], "--np must be at least 1"),
     (["--threads", "0"], "threads must be a positive integer"),
     (["--memory", "lots"], "--memory"),
+    (["--restart"], "--restart is an option of hollowbody's own engine"),
+    (["--erode"], "--erode is an option of hollowbody's own engine"),
 ])
 def test_bad_engine_options_are_exit_2(args, message, tmp_path, capsys, no_engines):
     code = main(["run", str(EXAMPLE), "--engine", "lsdyna", "--out", str(tmp_path / "o"),
                  "--dry-run", *args])
     assert code == 2
     assert message in capsys.readouterr().err
+
+
+def test_end_time_reaches_both_engines(tmp_path, capsys, no_engines):
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLE), "--engine", "openradioss", "--end-time", "2.5",
+                 "--out", str(out), "--dry-run"]) == 0
+    text = capsys.readouterr().out.splitlines()
+    i = text.index("  /RUN/block_drop/1")
+    assert float(text[i + 1]) == 2.5
+    assert main(["run", str(EXAMPLE), "--engine", "lsdyna", "--end-time", "2.5",
+                 "--out", str(out), "--dry-run"]) == 0
+    assert "ENDTIM set to 2.5 ms" in capsys.readouterr().out
+
+
+def test_the_decks_the_engines_read_are_written_into_the_run_folder(tmp_path, no_engines):
+    from hollowbody.engines.runner import plan_run
+    from hollowbody.io.keyword import ControlTermination, read_deck
+
+    out = tmp_path / "ls"
+    prep = plan_run("lsdyna", EXAMPLE, out, end_time=3.0, dry_run=True, write=True)
+    deck = read_deck(out / "block_drop.k")
+    assert [c.endtim for c in deck.of_type(ControlTermination)] == [3.0]
+    assert prep.end_time_ms == 3.0 and prep.found is False
+    out = tmp_path / "or"
+    prep = plan_run("openradioss", EXAMPLE, out, dry_run=True, write=True)
+    assert (out / "block_drop.k").is_file() and prep.engine_file[0] == "block_drop_0001.rad"
+    with pytest.raises(Exception, match="overwritten"):
+        plan_run("lsdyna", out / "block_drop.k", out, dry_run=True)
