@@ -18,6 +18,7 @@ from __future__ import annotations
 import re
 import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 from hollowbody.errors import UserInputError
 
@@ -33,7 +34,8 @@ class SlurmSpec:
     queue: partition (None: the cluster's default); walltime ``HH:MM:SS`` of one
     job; cores_per_job: cores each job books; jobs: number of jobs (dask
     workers); memory: memory per job (dask-jobqueue notation, e.g. ``8GB``;
-    None: 2 GB per core); python: the interpreter the jobs run.
+    None: 2 GB per core); python: the interpreter the jobs run; log_directory:
+    folder of the jobs' output files (None: the folder they are submitted from).
     """
 
     queue: str | None = None
@@ -42,6 +44,7 @@ class SlurmSpec:
     jobs: int = 1
     memory: str | None = None
     python: str = sys.executable
+    log_directory: str | None = None
 
     def __post_init__(self) -> None:
         if not re.fullmatch(r"\d+:[0-5]\d:[0-5]\d", self.walltime):
@@ -69,6 +72,8 @@ class SlurmSpec:
                   python=self.python, job_name="hollowbody-calibrate")
         if self.queue:
             kw["queue"] = self.queue
+        if self.log_directory:
+            kw["log_directory"] = self.log_directory
         return kw
 
 
@@ -86,7 +91,16 @@ def job_script(spec: SlurmSpec, scheduler: str = "tcp://SCHEDULER-ADDRESS:8786")
     from dask_jobqueue.slurm import SLURMJob
 
     _jobqueue()
+    made: list[Path] = []  # folders of the log directory that do not exist yet
+    if spec.log_directory:
+        p = Path(spec.log_directory).absolute()
+        while not p.exists():
+            made.append(p)
+            p = p.parent
     job = SLURMJob(scheduler=scheduler, name="hollowbody-worker", **spec.kwargs())
+    for p in made:  # dask-jobqueue creates the log directory: a script only needs none
+        if p.is_dir() and not any(p.iterdir()):
+            p.rmdir()
     return job.job_script()
 
 

@@ -127,7 +127,8 @@ def slurm_spec(args: argparse.Namespace):
     if args.workers is not None or args.scheduler is not None:
         raise UserInputError("--cluster cannot be combined with --workers or --scheduler")
     return SlurmSpec(queue=args.queue, walltime=args.walltime,
-                     cores_per_job=args.cores_per_job, jobs=args.jobs, memory=args.job_memory)
+                     cores_per_job=args.cores_per_job, jobs=args.jobs, memory=args.job_memory,
+                     log_directory=str(args.out / "slurm"))
 
 
 def parse_fixed(items: list[str], calibrated: list[str]) -> dict[str, float]:

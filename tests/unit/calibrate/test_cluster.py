@@ -1,5 +1,7 @@
-"""``hollowbody calibrate --cluster slurm``: the SLURM job script (dask-jobqueue) and a
-run on a real SLURM when one is reachable (skipped otherwise, with the reason)."""
+"""``hollowbody calibrate --cluster slurm``: the SLURM job script (dask-jobqueue) and
+tasks run in a real SLURM job when SLURM is installed (skipped otherwise, with the
+reason; ``tests/cluster/single_node_slurm.sh`` starts a one-node SLURM from the
+distribution's packages and runs these tests against it)."""
 
 from __future__ import annotations
 
@@ -32,6 +34,9 @@ def test_job_script_books_the_cores_and_runs_one_single_threaded_worker():
     assert worker.startswith("/opt/py/bin/python -m distributed.cli.dask_worker "
                              "tcp://10.0.0.1:8786")
     assert "--nthreads 1" in worker
+    # the jobs' output files go to the log folder
+    logs = job_script(SlurmSpec(log_directory="/data/cal/slurm")).splitlines()
+    assert "#SBATCH -o /data/cal/slurm/hollowbody-calibrate-%J.out" in logs
     # no queue given: no partition line
     assert not any(line.startswith("#SBATCH -p")
                    for line in job_script(SlurmSpec()).splitlines())
@@ -67,12 +72,32 @@ def test_cli_bad_cluster_options_are_exit_2(args, message, tmp_path, capsys):
     assert message in capsys.readouterr().err
 
 
-def test_tasks_run_on_a_real_slurm():
-    if shutil.which("sbatch") is None or shutil.which("squeue") is None:
-        pytest.skip("no SLURM here (sbatch / squeue not on the PATH)")
+def _slurm_unavailable() -> str | None:
+    """Why no SLURM can run jobs here (None: a partition has an idle or mixed node)."""
+    import subprocess
+
+    if shutil.which("sbatch") is None or shutil.which("sinfo") is None:
+        return "no SLURM here (sbatch / sinfo not on the PATH)"
+    try:
+        res = subprocess.run(["sinfo", "-h", "-o", "%T"], capture_output=True, text=True,
+                             timeout=10)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        return f"SLURM does not answer (sinfo: {exc})"
+    states = res.stdout.split()
+    if res.returncode != 0 or not any(s.rstrip("*") in ("idle", "mixed") for s in states):
+        said = res.stdout.strip() or res.stderr.strip()
+        return f"no SLURM node free to run a job (sinfo: {said})"
+    return None
+
+
+def test_tasks_run_on_a_real_slurm(tmp_path):
+    why = _slurm_unavailable()
+    if why:
+        pytest.skip(why)
     from hollowbody.calibrate.runner import make_runner
 
-    spec = SlurmSpec(walltime="00:05:00", cores_per_job=1, jobs=1)
+    spec = SlurmSpec(walltime="00:05:00", cores_per_job=1, jobs=1,
+                     log_directory=str(tmp_path / "slurm"))
     with make_runner(slurm=spec) as runner:
         results = sorted(r for _, r, err in runner.run(operator.neg, [1, 2, 3]) if err is None)
     assert results == [-3, -2, -1]
