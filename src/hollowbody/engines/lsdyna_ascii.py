@@ -24,6 +24,8 @@ import math
 import re
 from pathlib import Path
 
+from hollowbody.solver.outputs import GLSTAT_COLUMNS
+
 NUM = r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[EeDd][-+]?\d+)?"
 _FLOAT_IN_COLUMN = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
 
@@ -40,9 +42,8 @@ GLSTAT_NAMES = {
     "totalenergy/initialenergy": "energy_ratio",
     "addedmass": "added_mass [kg]",
 }
-GLSTAT_ORDER = ("time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]",
-                "hourglass [J]", "contact [J]", "external_work [J]", "total [J]",
-                "energy_ratio", "added_mass [kg]")
+#: The columns of glstat.csv (those of hollowbody's own runs).
+GLSTAT_ORDER = GLSTAT_COLUMNS
 
 
 def _f(s: str) -> float:
