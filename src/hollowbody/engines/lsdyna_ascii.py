@@ -11,7 +11,7 @@ mm/ms, the units of the CSV columns. Layouts (LS-DYNA's ASCII output):
   ``sliding interface energy``, ``external work``, ``total energy``, ``total
   energy / initial energy``, ``added mass``, ...).
 - ``rcforc``: one line per interface side and time: ``master|slave ID time T x
-  force FX y force FY z force FZ [mass M]``.
+  FX y FY z FZ mass M`` (``x force``, ... in some versions).
 - ``nodout``: blocks headed ``n o d a l  p r i n t  o u t  f o r  t i m e  s t e p
   N ( at time T )``, then the table ``nodal point x-disp y-disp z-disp x-vel y-vel
   z-vel x-accl ...`` (one row per node; the numbers in fixed columns may touch);
@@ -77,9 +77,9 @@ def parse_glstat(text: str) -> list[list[float]]:
     return [[r.get(c, math.nan) for c in GLSTAT_ORDER] for r in rows]
 
 
-_RCFORC = re.compile(r"^\s*(master|slave)\s+(\d+)\s+time\s+(" + NUM + r")\s+x\s+force\s+("
-                     + NUM + r")\s+y\s+force\s+(" + NUM + r")\s+z\s+force\s+(" + NUM + ")",
-                     re.IGNORECASE)
+_RCFORC = re.compile(r"^\s*(master|slave)\s+(\d+)\s+time\s*(" + NUM + r")\s+x(?:\s+force)?\s*("
+                     + NUM + r")\s+y(?:\s+force)?\s*(" + NUM + r")\s+z(?:\s+force)?\s*(" + NUM
+                     + ")", re.IGNORECASE)
 
 
 def parse_rcforc(text: str) -> list[list[float]]:

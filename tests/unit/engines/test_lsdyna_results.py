@@ -155,10 +155,18 @@ def test_glstat_rows():
     assert GLSTAT_ORDER == GLSTAT_COLUMNS  # the columns hollowbody's own runs write
 
 
+RCFORC_SHORT = """\
+  master          2 time 1.00000E-02  x  5.00000E-01  y  0.00000E+00  z -1.00000E+00 mass  0.00000E+00
+  slave           2 time 1.00000E-02  x -5.00000E-01  y  0.00000E+00  z  1.00000E+00 mass  0.00000E+00
+"""
+
+
 def test_rcforc_rows_pair_slave_and_master():
     rows = parse_rcforc(RCFORC)
     assert rows == [[1e-2, 1, -0.1, 0.2, -3.0, 0.1, -0.2, 3.0],
                     [2e-2, 1, -0.2, 0.0, -4.0, 0.2, 0.0, 4.0]]
+    # the layout without the word "force" after x, y, z
+    assert parse_rcforc(RCFORC_SHORT) == [[1e-2, 2, -0.5, 0.0, 1.0, 0.5, 0.0, -1.0]]
 
 
 def test_nodout_rows_translational_table_only_with_touching_columns():
