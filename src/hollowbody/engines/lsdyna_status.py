@@ -103,12 +103,13 @@ def parse_listing(text: str, into: Termination | None = None) -> Termination:
 
 
 def read_termination(folder: str | Path) -> Termination:
-    """How the LS-DYNA run in ``folder`` ended: ``d3hsp`` first, then ``messag`` (its
-    messages add the error's location when d3hsp lacks it)."""
+    """How the LS-DYNA run in ``folder`` ended: ``d3hsp`` first, then ``messag`` (SMP) or
+    ``mes0000``, ``mes0001``, ... (MPP, one per rank), whose messages add the error's
+    location when d3hsp lacks it."""
     folder = Path(folder)
     term = Termination()
-    for name in ("d3hsp", "messag"):
-        p = folder / name
+    files = [folder / "d3hsp", folder / "messag", *sorted(folder.glob("mes[0-9][0-9][0-9]*"))]
+    for p in files:  # MPP writes one message file per rank: mes0000, mes0001, ...
         if p.is_file():
             parse_listing(p.read_text(encoding="latin-1", errors="replace"), term)
     return term

@@ -86,6 +86,12 @@ def test_termination_from_messag_when_d3hsp_lacks_it(tmp_path):
     t = read_termination(tmp_path)
     assert t.status == ERROR and t.where == {"element": 77}
     assert "solid element 77" in t.reason and t.version == "smp d R13.1.1"
+    # MPP: one message file per rank; the element named on another line wording
+    (tmp_path / "messag").unlink()
+    (tmp_path / "mes0000").write_text(" E r r o r   t e r m i n a t i o n\n")
+    (tmp_path / "mes0003").write_text(" solid element     4321 in part   7 has negative volume\n")
+    t = read_termination(tmp_path)
+    assert t.status == ERROR and t.where == {"element": 4321, "part": 7}
 
 
 GLSTAT = """\
