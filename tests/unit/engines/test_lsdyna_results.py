@@ -258,3 +258,29 @@ def test_binout_rows(tmp_path):
                               [0.5, 17, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0]]
     assert rows["rcforc"][1] == [0.5, 1, -0.5, -0.5, -0.5, 0.5, 0.5, 0.5]
     assert read_binout(tmp_path / "empty") == {}
+
+
+def test_a_finished_lsdyna_run_folder_becomes_hollowbodys_files(tmp_path):
+    """The runner's last step on a folder as LS-DYNA leaves it (synthetic files)."""
+    from pathlib import Path
+
+    from hollowbody.engines.commands import Command, RunPlan
+    from hollowbody.engines.runner import Prepared, _collect_lsdyna
+
+    (tmp_path / "d3hsp").write_text(D3HSP_ERROR)
+    (tmp_path / "glstat").write_text(GLSTAT)
+    cmd = Command("lsdyna", "/opt/lsdyna", ("i=deck.k",), tmp_path)
+    prep = Prepared(RunPlan("lsdyna", Path(tmp_path / "deck.k"), tmp_path, (cmd,)),
+                    end_time_ms=10.0)
+    s = _collect_lsdyna(prep, 3.5, {"lsdyna": 1}, [cmd.argv()])
+    assert s["status"] == ERROR and s["error_element"] == 1234 and s["error_part"] == 2
+    assert s["end_time_ms"] == 1.2345 and s["requested_end_time_ms"] == 10.0
+    assert s["cycles"] == 4567 and s["wall_seconds"] == 3.5
+    assert s["engine_version"] == "smp d R13.1.1" and s["commands"] == [["/opt/lsdyna",
+                                                                          "i=deck.k"]]
+    assert (tmp_path / "glstat.csv").is_file() and not (tmp_path / "nodout.csv").exists()
+    # no listing at all and a failed process: an error termination that says so
+    for f in ("d3hsp", "glstat", "glstat.csv"):
+        (tmp_path / f).unlink()
+    s = _collect_lsdyna(prep, 0.1, {"lsdyna": 9}, [])
+    assert s["status"] == ERROR and s["reason"] == "LS-DYNA stopped (exit code 9)"

@@ -160,3 +160,31 @@ def test_engine_file_merged_with_the_starters():
     assert "/DT/BRICK/CST" not in merged and "/DT/BRICK/STOP" in merged  # ours replaces it
     assert "/ANIM/ELEM/ENER" in merged and "/TH/TITLE" in merged
     assert " 0.9 1.0E-6" not in merged
+
+
+def test_a_finished_openradioss_run_folder_becomes_hollowbodys_files(tmp_path):
+    """The runner's last step on a folder as OpenRadioss leaves it (synthetic files)."""
+    import json
+
+    from hollowbody.engines.commands import Command, RunPlan
+    from hollowbody.engines.runner import Prepared, _collect_radioss
+    from hollowbody.io.results.history import read_history
+
+    (tmp_path / "box_0001.out").write_text(LISTING + "     NORMAL TERMINATION\n")
+    for k in (1, 2):
+        (tmp_path / f"boxA00{k}.vtk").write_text("# vtk DataFile Version 3.0\n")
+    cmd = Command("engine", "engine_linux64_gf", ("-i", "box_0001.rad"), tmp_path)
+    text = engine_file_text("box", EngineSettings(end_time=1.0, history_dt=0.01, anim_dt=0.25))
+    prep = Prepared(RunPlan("openradioss", tmp_path / "box.k", tmp_path, (cmd,)),
+                    ("box_0001.rad", text), end_time_ms=1.0)
+    s = _collect_radioss(prep, 2.0, {"starter": 0, "engine": 0}, [cmd.argv()])
+    assert s["status"] == NORMAL and s["engine"] == "openradioss"
+    assert s["engine_version"] == "OpenRadioss Engine 2026.08.21" and s["cycles"] == 100
+    assert json.loads((tmp_path / "summary.json").read_text()) == s
+    g = read_history(tmp_path / "glstat.csv")
+    assert list(g["cycle"]) == [0.0, 100.0]
+    pvd = (tmp_path / "states.pvd").read_text()
+    assert 'timestep="0" file="boxA001.vtk"' in pvd and 'timestep="0.25" file="boxA002.vtk"' in pvd
+    # a starter that stopped is an error termination pointing at its listing
+    s = _collect_radioss(prep, 0.1, {"starter": 2}, [])
+    assert s["status"] == ERROR and "box_0000.out" in s["reason"]
