@@ -32,7 +32,10 @@ LAYERS: list[tuple[str, ...]] = [
     ("materials",),
     ("elements", "contact"),
     ("solver",),
-    ("api",),
+    # engines: the hand-off to OpenRadioss / LS-DYNA reads decks (io.keyword, build) and
+    # writes the solver's history columns; it sits beside api (neither imports the other)
+    # so that scenarios, calibration and the command line can run on any engine.
+    ("api", "engines"),
     ("hollow", "curves", "rating"),
     ("scenarios", "body"),
     ("calibrate",),

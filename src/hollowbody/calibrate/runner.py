@@ -77,12 +77,17 @@ class DaskRunner:
     """
 
     def __init__(self, workers: int | None = None, scheduler: str | None = None,
-                 retries: int = 2, processes: bool = True) -> None:
+                 retries: int = 2, processes: bool = True, cluster: Any = None,
+                 description: str = "") -> None:
         from dask.distributed import Client, LocalCluster
 
         self.retries = int(retries)
         self.cluster = None
-        if scheduler:
+        if cluster is not None:  # a started cluster (SLURM jobs), closed with this runner
+            self.cluster = cluster
+            self.client = Client(cluster)
+            self.description = description or f"dask cluster {type(cluster).__name__}"
+        elif scheduler:
             try:
                 self.client = Client(scheduler, timeout="20s")
             except (OSError, TimeoutError, ValueError) as exc:
@@ -155,9 +160,16 @@ class DaskRunner:
 
 
 def make_runner(workers: int | None = None, scheduler: str | None = None,
-                retries: int = 2) -> SerialRunner | DaskRunner:
-    """``scheduler`` given: that cluster; ``workers`` == 1: this process; otherwise a
-    LocalCluster of ``workers`` processes (default: one per CPU)."""
+                retries: int = 2, slurm: Any = None) -> SerialRunner | DaskRunner:
+    """``slurm`` given (a :class:`hollowbody.calibrate.cluster.SlurmSpec`): SLURM jobs
+    through dask-jobqueue; ``scheduler`` given: that cluster; ``workers`` == 1: this
+    process; otherwise a LocalCluster of ``workers`` processes (default: one per CPU)."""
+    if slurm is not None:
+        from hollowbody.calibrate.cluster import slurm_cluster
+
+        return DaskRunner(retries=retries, cluster=slurm_cluster(slurm),
+                          description=f"SLURM: {slurm.jobs} job(s) of {slurm.cores_per_job} "
+                                      f"core(s){' on ' + slurm.queue if slurm.queue else ''}")
     if scheduler:
         return DaskRunner(scheduler=scheduler, retries=retries)
     n = int(workers or os.cpu_count() or 1)

@@ -6,7 +6,8 @@ hollow block at every speed and scores the least-squares distance between
 its force-displacement curve and the solid one (loading and unloading,
 normalised by the reference's peak force and maximum displacement; summed
 over speeds). Evaluations run in parallel on a local dask cluster (default:
-one worker per CPU) or on an existing one (--scheduler). Every evaluation is
+one worker per CPU), on an existing one (--scheduler) or as SLURM jobs
+(--cluster slurm; --dry-run prints the job script). Every evaluation is
 cached in DIR/evaluations.jsonl and the GA checkpointed after each
 generation: --resume continues a stopped calibration without running
 anything twice.
@@ -58,6 +59,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(default: etan 0 MPa, thickness 1.5 mm)")
     add_ga_options(p)
     add_runner_options(p)
+    add_cluster_options(p)
     p.add_argument("--resume", action="store_true",
                    help="continue the calibration checkpointed in --out (default: start anew)")
     p.add_argument("--mesh", type=float, default=7.5,
@@ -92,6 +94,41 @@ def add_runner_options(p: argparse.ArgumentParser) -> None:
                    help="address of an existing dask scheduler, e.g. tcp://host:8786 "
                         "(workers need hollowbody and this file system; default: a local "
                         "cluster)")
+
+
+def add_cluster_options(p: argparse.ArgumentParser) -> None:
+    """``--cluster slurm`` and its job options, ``--dry-run``."""
+    g = p.add_argument_group("cluster (optional extra: pip install 'hollowbody[cluster]')")
+    g.add_argument("--cluster", choices=("slurm",), default=None,
+                   help="run the evaluations as SLURM jobs through dask-jobqueue (default: "
+                        "a local dask cluster)")
+    g.add_argument("--queue", default=None, help="SLURM partition (default: the cluster's)")
+    g.add_argument("--walltime", default="01:00:00", metavar="HH:MM:SS",
+                   help="wall time of one job (default 01:00:00)")
+    g.add_argument("--cores-per-job", type=int, default=1, metavar="N",
+                   help="cores each job books; its evaluation runs on all of them (default 1)")
+    g.add_argument("--jobs", type=int, default=1, metavar="N",
+                   help="SLURM jobs, each evaluating one candidate at a time (default 1)")
+    g.add_argument("--job-memory", default=None, metavar="SIZE",
+                   help="memory per job, e.g. 8GB (default: 2 GB per core)")
+    g.add_argument("--dry-run", action="store_true",
+                   help="with --cluster: print the job script and submit nothing (default: submit)")
+
+
+def slurm_spec(args: argparse.Namespace):
+    """The SlurmSpec of the parsed options (None without --cluster)."""
+    from hollowbody.calibrate.cluster import SlurmSpec
+
+    if getattr(args, "cluster", None) is None:
+        if getattr(args, "dry_run", False):
+            raise UserInputError("--dry-run prints the job script of --cluster slurm; "
+                                 "give --cluster")
+        return None
+    if args.workers is not None or args.scheduler is not None:
+        raise UserInputError("--cluster cannot be combined with --workers or --scheduler")
+    return SlurmSpec(queue=args.queue, walltime=args.walltime,
+                     cores_per_job=args.cores_per_job, jobs=args.jobs, memory=args.job_memory,
+                     log_directory=str(args.out / "slurm"))
 
 
 def parse_fixed(items: list[str], calibrated: list[str]) -> dict[str, float]:
@@ -161,12 +198,21 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.report.calibration import write_report
 
     settings, sim = build_settings(args)
+    slurm = slurm_spec(args)
+    if slurm is not None and args.dry_run:
+        from hollowbody.calibrate.cluster import job_script
+
+        print(f"# {slurm.jobs} SLURM job(s) of {slurm.cores_per_job} core(s), "
+              f"{slurm.job_memory}, {slurm.walltime}; each runs one dask worker that "
+              "evaluates one candidate at a time")
+        print(job_script(slurm))
+        return 0
     out: Path = args.out
     if args.resume and not (out / CHECKPOINT).exists():
         raise UserInputError(f"--resume: no checkpoint in {out} (nothing to resume)")
     progress = make_progress(args.quiet)
     try:
-        with make_runner(args.workers, args.scheduler) as runner:
+        with make_runner(args.workers, args.scheduler, slurm=slurm) as runner:
             if not args.quiet:
                 progress.message(f"calibrating the hollow {settings.tissue} block: "
                                  f"{', '.join(settings.space.names)} at "

@@ -10,6 +10,13 @@ files; never the deck or its includes).
 ``--threads auto`` (the default) runs small models on one thread and larger
 ones on every core (see :mod:`hollowbody.solver.threads`); ``--threads N`` on
 at most N.
+
+``--engine openradioss|lsdyna`` runs the deck on an installed external engine
+instead (docs/engines.md): ``--np`` MPI ranks of ``--threads`` threads each
+(auto: 1), found through ``--engine-path``, OPENRADIOSS_PATH / LSDYNA or the
+PATH; its results are read back into the same glstat.csv and summary.json.
+``--dry-run`` prints what would run (programs, arguments, environment,
+folder) and runs nothing.
 """
 
 from __future__ import annotations
@@ -60,7 +67,25 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="a limit of the run's quality verdict, e.g. hourglass_warn=0.15 "
                         "(repeatable; default: the limits in docs/solver.md)")
     add_threads_argument(p)
+    add_engine_arguments(p)
     p.set_defaults(func=with_threads(main))
+
+
+def add_engine_arguments(p: argparse.ArgumentParser) -> None:
+    """``--engine``, ``--np``, ``--engine-path``, ``--memory``, ``--dry-run``."""
+    p.add_argument("--engine", choices=("hollowbody", "openradioss", "lsdyna"),
+                   default="hollowbody",
+                   help="the engine that runs the deck (default: hollowbody, this program)")
+    p.add_argument("--np", type=int, default=1, metavar="N",
+                   help="MPI ranks of an external engine (default 1)")
+    p.add_argument("--engine-path", default=None, metavar="PATH",
+                   help="OpenRadioss folder or LS-DYNA executable (default: OPENRADIOSS_PATH "
+                        "/ LSDYNA, else the PATH)")
+    p.add_argument("--memory", default=None, metavar="WORDS[,WORDS2]",
+                   help="LS-DYNA memory= (and MPP memory2=) in words, e.g. 400m,80m (default: "
+                        "from the model size)")
+    p.add_argument("--dry-run", action="store_true",
+                   help="print what would run and run nothing (default: run)")
 
 
 def add_threads_argument(p: argparse.ArgumentParser) -> None:
@@ -101,6 +126,15 @@ def exit_code(status: str) -> int:
 
 
 def main(args: argparse.Namespace) -> int:
+    if getattr(args, "engine", "hollowbody") != "hollowbody":
+        from hollowbody.cli.run_engine import main as run_engine
+
+        return run_engine(args)
+    if getattr(args, "dry_run", False):
+        from hollowbody.cli.run_engine import describe_embedded
+
+        print(describe_embedded(args))
+        return 0
     from hollowbody.api import run_deck
     from hollowbody.errors import UserInputError
     from hollowbody.solver.verdict import Thresholds, headline

@@ -147,6 +147,16 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         f.unlink()
 
 
+#: Columns (with units) of glstat.csv, rcforc.csv and nodout.csv (also what the results
+#: of an external engine are converted to: hollowbody.engines.results).
+GLSTAT_COLUMNS = ("time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]",
+                  "hourglass [J]", "contact [J]", "external_work [J]", "total [J]",
+                  "energy_ratio", "added_mass [kg]")
+RCFORC_COLUMNS = ("time [ms]", "contact", "slave_fx [kN]", "slave_fy [kN]", "slave_fz [kN]",
+                  "master_fx [kN]", "master_fy [kN]", "master_fz [kN]")
+NODOUT_COLUMNS = ("time [ms]", "node", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]",
+                  "vy [mm/ms]", "vz [mm/ms]")
+
 HISTORIES = ("glstat", "rcforc", "nodout", "rbdout", "spcforc", "matsum", "rwforc",
              "deforc", "jntforc")
 
@@ -189,16 +199,12 @@ class RunOutputs:
             else:
                 self.d3plot_note = ("*DATABASE_BINARY_D3PLOT: no d3plot written (lasso-python "
                                     f"is not installed: {D3PLOT_EXTRA}); ParaView states only")
-        self.glstat = HistoryWriter(self.out / "glstat.csv", [
-            "time [ms]", "cycle", "dt [ms]", "kinetic [J]", "internal [J]", "hourglass [J]",
-            "contact [J]", "external_work [J]", "total [J]", "energy_ratio",
-            "added_mass [kg]"], pos.get("glstat"))
-        self.rcforc = HistoryWriter(self.out / "rcforc.csv", [
-            "time [ms]", "contact", "slave_fx [kN]", "slave_fy [kN]", "slave_fz [kN]",
-            "master_fx [kN]", "master_fy [kN]", "master_fz [kN]"], pos.get("rcforc"))
-        self.nodout = HistoryWriter(self.out / "nodout.csv", [
-            "time [ms]", "node", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
-            "vz [mm/ms]"], pos.get("nodout"))
+        self.glstat = HistoryWriter(self.out / "glstat.csv", list(GLSTAT_COLUMNS),
+                                    pos.get("glstat"))
+        self.rcforc = HistoryWriter(self.out / "rcforc.csv", list(RCFORC_COLUMNS),
+                                    pos.get("rcforc"))
+        self.nodout = HistoryWriter(self.out / "nodout.csv", list(NODOUT_COLUMNS),
+                                    pos.get("nodout"))
         self.rbdout = HistoryWriter(self.out / "rbdout.csv", [
             "time [ms]", "part", "ux [mm]", "uy [mm]", "uz [mm]", "vx [mm/ms]", "vy [mm/ms]",
             "vz [mm/ms]", "fx [kN]", "fy [kN]", "fz [kN]"], pos.get("rbdout"))

@@ -1,0 +1,49 @@
+"""Runs on the real engines: skipped, with the reason, when the engine is not installed.
+
+OpenRadioss is found through OPENRADIOSS_PATH or the PATH, LS-DYNA through
+LSDYNA or the PATH (docs/engines.md). The deck is the worked example
+``examples/loads/block_drop.k`` (no contact, which OpenRadioss's keyword
+translation refuses): a block dropped onto a rigid wall for 60 ms. The run must
+end normally at the deck's end time and write hollowbody's glstat.csv and
+summary.json, with a total energy within 5 % of the initial energy plus the
+external work at the end (the run's energy balance; 5 % because the engine's
+external work of gravity and the wall differ in how they are counted).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from hollowbody.cli.main import main
+from hollowbody.engines.discovery import EngineNotFound, find_lsdyna, find_openradioss
+from hollowbody.io.results.history import read_history
+
+EXAMPLE = Path(__file__).parents[3] / "examples" / "loads" / "block_drop.k"
+
+
+def _installed(find) -> str | None:
+    try:
+        find()
+    except EngineNotFound as exc:
+        return str(exc)
+    return None
+
+
+@pytest.mark.parametrize("engine, find", [("openradioss", find_openradioss),
+                                          ("lsdyna", find_lsdyna)])
+def test_example_runs_to_normal_termination_on_the_engine(engine, find, tmp_path):
+    missing = _installed(find)
+    if missing:
+        pytest.skip(f"{engine} is not installed here: {missing}")
+    out = tmp_path / "out"
+    code = main(["run", str(EXAMPLE), "--engine", engine, "--out", str(out), "--quiet"])
+    s = json.loads((out / "summary.json").read_text())
+    assert code == 0, s["reason"]
+    assert s["engine"] == engine and s["status"] == "normal termination"
+    assert s["end_time_ms"] == pytest.approx(60.0, rel=1e-3)
+    g = read_history(out / "glstat.csv")
+    assert g["time [ms]"].size > 10
+    assert g["energy_ratio"][-1] == pytest.approx(1.0, abs=0.05)
