@@ -210,8 +210,10 @@ def rigid_bodies(body: Body) -> dict[str, int]:
     """Rigid body (joint side) name -> pid of the part that represents it."""
     p = body.parts
     out = {"pelvis": p["trunk_pelvis"].pid, "head": p["head"].pid, "neck": p["neck"].pid}
-    for z in ("T1", "T8", "T12", "L3", "sacrum"):
+    for z in ("T1", "T8", "T12", "L3"):
         out[z] = p[f"trunk_spine_{z}"].pid
+    out["sacrum"] = out["pelvis"]  # merged into the pelvis (*CONSTRAINED_RIGID_BODIES)
+    out["sacrum_part"] = p["trunk_spine_sacrum"].pid
     for side in ("l", "r"):
         for s in LIMBS:
             out[f"{s}_{side}_proximal"] = p[f"{s}_{side}_proximal"].pid
