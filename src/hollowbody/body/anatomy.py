@@ -49,7 +49,7 @@ LIMB_SHAPES = {
 #: Trunk sections (fractions of stature): half-width a and half-depth b at
 #: MIDH, OMPH, XYPH, CERV; spine shell radius and its posterior offset (fraction of b).
 TRUNK_SHAPE = dict(a=(0.095, 0.085, 0.092, 0.080), b=(0.058, 0.062, 0.060, 0.052),
-                   spine_r=0.012, spine_back=0.55, fat=0.85)
+                   spine_r=0.012, spine_back=0.30, fat=0.85)
 RIB_T = 2.0   # mm, smeared rib-cage shell
 BONE_T_PELVIS = 3.0
 SKIN_T = 1.0
@@ -134,7 +134,7 @@ def limb(body: BodyMesh, sk: Skeleton, segment: str, side: str, mesh: float,
     outer = Ellipses(np.zeros(nz + 1), off, b, a)  # local x: AP (b), local y: ML (a)
     inner = Ellipses.constant(nz + 1, rb, rb)
     perim = np.pi * (a[-1] + b[-1])
-    nt = int(np.clip(2 * round(perim / mesh / 2), 8, 16))
+    nt = int(np.clip(2 * round(perim / mesh / 2), 8, 12))
     radial = max(2, int(round((0.5 * (a[-1] + b[-1]) - rb) / mesh)))
     tube = layered_tube(zs, inner, outer, np.linspace(0.0, 1.0, radial + 1), nt)
     first = body.add_nodes(place(tube.nodes(), p0, frame))
