@@ -41,7 +41,7 @@ JOINT_GAP = 12.0
 #: distal/proximal taper, lateral offset of the flesh centre at the proximal end,
 #: bone mid-surface radius, cortical thickness (mm, at 1,753 mm).
 LIMB_SHAPES = {
-    "thigh": dict(a=0.051, b=0.068, taper=0.60, offset=0.006, bone_r=0.0068, bone_t=5.0),
+    "thigh": dict(a=0.051, b=0.068, taper=0.60, offset=0.003, bone_r=0.0068, bone_t=5.0),
     "shank": dict(a=0.030, b=0.034, taper=0.60, offset=0.0, bone_r=0.0057, bone_t=4.0),
     "upper_arm": dict(a=0.029, b=0.029, taper=0.80, offset=0.0, bone_r=0.0057, bone_t=3.5),
     "forearm": dict(a=0.027, b=0.024, taper=0.65, offset=0.0, bone_r=0.0046, bone_t=2.5),

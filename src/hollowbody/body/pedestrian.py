@@ -153,11 +153,11 @@ def _extremities(body: an.BodyMesh, sk: Skeleton, parts: dict[str, an.PartMesh],
                                    np.array([rn, rn, 0.5 * ln]), np.eye(3), max(2, n // 2),
                                    m_n, c_n, i_n)
     for side in ("l", "r"):
-        # hand: a box from the wrist along the forearm axis, de Leva's hand mass/inertia
+        # hand: a box from the wrist along the forearm axis (palm medial), de Leva mass
         fr = sk.frames[f"hand_{side}"]
         w, m3 = sk.point(f"WJC_{side}"), sk.point(f"MET3_{side}")
         hl = 0.108 * h  # hand length (Winter)
-        semi = np.array([0.017 * h, 0.027 * h, 0.5 * (hl - an.JOINT_GAP)])
+        semi = np.array([0.027 * h, 0.017 * h, 0.5 * (hl - an.JOINT_GAP)])
         c = w - fr[2] * (an.JOINT_GAP + semi[2])
         sg = seg["hand"]
         com = w + (m3 - w) * sg.com / sg.length

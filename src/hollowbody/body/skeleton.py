@@ -190,3 +190,69 @@ def rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     a = np.asarray(axis, float) / np.linalg.norm(axis)
     k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
     return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+
+
+#: Segments distal to each joint (rotating a joint moves these with it).
+DISTAL = {
+    "HJC": ("thigh", "shank", "foot"), "KJC": ("shank", "foot"), "AJC": ("foot",),
+    "SJC": ("upper_arm", "forearm", "hand"), "EJC": ("forearm", "hand"), "WJC": ("hand",),
+}
+#: Landmarks that move with each segment.
+SEGMENT_POINTS = {"thigh": ("KJC",), "shank": ("AJC",), "foot": ("HEEL", "TTIP"),
+                  "upper_arm": ("EJC",), "forearm": ("WJC",), "hand": ("MET3",)}
+#: Walking posture (degrees, flexion forward positive): struck-side leg forward, the
+#: other leg back, feet flat; arms forward, elbows bent (choices close to the
+#: mid-stance gait posture of pedestrian impact tests).
+WALKING = {"hip_forward": 20.0, "knee_forward": 5.0, "hip_back": 15.0,
+           "shoulder": 20.0, "elbow": 70.0}
+
+
+def rotate_joint(sk: Skeleton, joint: str, side: str, axis: np.ndarray, angle: float) -> None:
+    """Rotate the segments distal to ``joint`` of ``side`` by ``angle`` rad about ``axis``
+    through the joint centre (landmarks and frames, in place)."""
+    r = rotation(axis, angle)
+    c = sk.points[f"{joint}_{side}"].copy()
+    for seg in DISTAL[joint]:
+        for name in SEGMENT_POINTS[seg]:
+            key = f"{name}_{side}"
+            sk.points[key] = c + r @ (sk.points[key] - c)
+        key = f"{seg}_{side}"
+        sk.frames[key] = sk.frames[key] @ r.T
+
+
+def walking(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS, struck: str = "l",
+            angles: dict[str, float] | None = None,
+            shoulder_half_width: float | None = None) -> Skeleton:
+    """The walking posture: the struck-side (``l`` or ``r``) leg forward, the other back
+    with its knee bent so both ankles are at one height, feet flat on the floor, both arms
+    forward with bent elbows (``angles`` in degrees override :data:`WALKING`)."""
+    if struck not in ("l", "r"):
+        raise ValueError(f"struck side must be 'l' or 'r' (got {struck!r})")
+    a = dict(WALKING, **(angles or {}))
+    sk = standing(stature, mass, shoulder_half_width)
+    y = np.array([0.0, 1.0, 0.0])
+    other = "r" if struck == "l" else "l"
+    lt, ls = sk.length("thigh"), sk.length("shank")
+    af, kf, ab = (np.radians(a[k]) for k in ("hip_forward", "knee_forward", "hip_back"))
+    drop = lt * np.cos(af) + ls * np.cos(af - kf)
+    c = np.clip((drop - lt * np.cos(ab)) / ls, -1.0, 1.0)
+    kb = float(np.arccos(c)) - ab  # rear knee flexion
+    # forward flexion turns the distal end to +x: a negative rotation about +y
+    rotate_joint(sk, "HJC", struck, y, -af)
+    rotate_joint(sk, "KJC", struck, y, kf)
+    rotate_joint(sk, "AJC", struck, y, af - kf)
+    rotate_joint(sk, "HJC", other, y, ab)
+    rotate_joint(sk, "KJC", other, y, kb)
+    rotate_joint(sk, "AJC", other, y, -(ab + kb))
+    for side in ("l", "r"):
+        rotate_joint(sk, "SJC", side, y, -np.radians(a["shoulder"]))
+        rotate_joint(sk, "EJC", side, y, -np.radians(a["elbow"]))
+    # lower the body so the feet stand on the floor
+    dz = min(sk.points[f"HEEL_{s}"][2] for s in ("l", "r"))
+    for k in sk.points:
+        sk.points[k] = sk.points[k] - np.array([0.0, 0.0, dz])
+    sk.notes.append(f"walking: struck side {struck} forward (hip {a['hip_forward']:g}, knee "
+                    f"{a['knee_forward']:g} deg), other leg back (hip {a['hip_back']:g}, knee "
+                    f"{np.degrees(kb):.1f} deg), arms forward (shoulder {a['shoulder']:g}, "
+                    f"elbow {a['elbow']:g} deg); body lowered {dz:.1f} mm")
+    return sk
