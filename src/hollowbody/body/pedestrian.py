@@ -21,7 +21,7 @@ import numpy as np
 from hollowbody.body import anatomy as an
 from hollowbody.body.anthropometry import DEFAULT_MASS, DEFAULT_STATURE
 from hollowbody.body.materials import MATERIALS
-from hollowbody.body.skeleton import Skeleton, standing
+from hollowbody.body.skeleton import Skeleton, standing, walking
 from hollowbody.body.tube import _signed_volume
 
 #: Share of each limb segment's mass carried by the flesh (bone, muscle, skin); the
@@ -34,6 +34,8 @@ TRUNK_FILL = {"upper_trunk": {"spine_T1": 0.5, "spine_T8": 0.5},
               "middle_trunk": {"spine_T12": 0.5, "spine_L3": 0.5},
               "lower_trunk": {"pelvis": 0.7, "spine_sacrum": 0.3}}
 LIMBS = ("thigh", "shank", "upper_arm", "forearm")
+#: Gap (mm) between the hanging arm and the trunk and thigh (a choice).
+ARM_CLEARANCE = 12.0
 
 
 @dataclass
@@ -86,25 +88,34 @@ def segment_masses(body: Body, rigid: bool = True) -> dict[str, float]:
 
 
 def build_body(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS,
-               mesh: float = 25.0, skeleton: Skeleton | None = None,
-               scales: dict[str, float] | None = None) -> Body:
+               mesh: float = 25.0, posture: str = "standing", struck: str = "l",
+               scales: dict[str, float] | None = None, skeleton: Skeleton | None = None
+               ) -> Body:
     """The body of ``stature`` mm and ``mass`` kg, soft-tissue element size ``mesh`` mm.
 
-    ``skeleton``: a posture (default standing); ``scales``: flesh scale by segment
-    (default: sized so the flesh carries :data:`FLESH_SHARE` of the segment mass).
-    Raises ValueError for a non-positive size, stature or mass.
+    ``posture``: ``standing`` or ``walking`` (struck side ``struck`` forward);
+    ``scales``: flesh scale by segment (default: sized so the flesh carries
+    :data:`FLESH_SHARE` of the segment mass). The shoulder joint centres are
+    placed where the hanging arms clear the trunk and thighs by
+    :data:`ARM_CLEARANCE` (at least Winter's half shoulder width);
+    ``skeleton`` overrides the posture. Raises ValueError for a non-positive
+    size, stature or mass or an unknown posture.
     """
     if not mesh > 0.0:
         raise ValueError(f"the element size must be positive (got {mesh:g} mm)")
-    sk = skeleton if skeleton is not None else standing(stature, mass)
+    if posture not in ("standing", "walking"):
+        raise ValueError(f"posture must be standing or walking (got {posture!r})")
+    if skeleton is not None:
+        sk = skeleton
+    else:
+        if scales is None:
+            base = standing(stature, mass)
+            scales = flesh_scales(stature, mass, mesh, base)
+        half = shoulder_half_width(standing(stature, mass), scales)
+        sk = (standing(stature, mass, half) if posture == "standing"
+              else walking(stature, mass, struck, shoulder_half_width=half))
     if scales is None:
-        first = build_body(stature, mass, mesh, sk, {s: 1.0 for s in LIMBS + ("trunk",)})
-        flesh = segment_masses(first, rigid=False)
-        scales = {}
-        for s in LIMBS:
-            target = sk.segments[s].mass * FLESH_SHARE
-            scales[s] = float(np.sqrt(target / flesh[f"{s}_l"]))
-        scales["trunk"] = 1.0
+        scales = flesh_scales(stature, mass, mesh, sk)
     body = an.BodyMesh()
     parts: dict[str, an.PartMesh] = {}
     for key, p in an.trunk(body, sk, mesh, scales["trunk"]).items():
@@ -119,6 +130,34 @@ def build_body(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS,
     return out
 
 
+def flesh_scales(stature: float, mass: float, mesh: float, sk: Skeleton) -> dict[str, float]:
+    """Flesh scale per limb segment so the flesh carries :data:`FLESH_SHARE` of its mass."""
+    first = build_body(stature, mass, mesh, scales={s: 1.0 for s in LIMBS + ("trunk",)},
+                       skeleton=sk)
+    flesh = segment_masses(first, rigid=False)
+    scales = {s: float(np.sqrt(sk.segments[s].mass * FLESH_SHARE / flesh[f"{s}_l"]))
+              for s in LIMBS}
+    scales["trunk"] = 1.0
+    return scales
+
+
+def shoulder_half_width(sk: Skeleton, scales: dict[str, float]) -> float:
+    """Lateral position (mm) of the shoulder joint centres: the hanging upper arm clears the
+    trunk and the wrist end of the forearm and the hand clear the thigh's top by :data:`ARM_CLEARANCE`; at least
+    Winter's half shoulder width 0.1295 H."""
+    h = sk.stature
+    sh = an.LIMB_SHAPES
+    trunk = max(an.TRUNK_SHAPE["a"]) * h * scales["trunk"]
+    arm = max(sh["upper_arm"]["a"], sh["upper_arm"]["b"]) * h * scales["upper_arm"]
+    thigh = (sk.point("HJC_l")[1] + (sh["thigh"]["offset"] + sh["thigh"]["a"]) * h
+             * scales["thigh"])
+    fore = (max(sh["forearm"]["a"], sh["forearm"]["b"]) * sh["forearm"]["taper"] * h
+            * scales["forearm"])  # the wrist end is beside the thigh's top
+    hand = 0.017 * h
+    return float(max(0.1295 * h, trunk + arm + ARM_CLEARANCE,
+                     thigh + max(fore, hand) + ARM_CLEARANCE))
+
+
 def _extremities(body: an.BodyMesh, sk: Skeleton, parts: dict[str, an.PartMesh],
                  mesh: float) -> None:
     """Head, neck, hands and feet: rigid shells with de Leva's mass and inertia."""
@@ -128,9 +167,8 @@ def _extremities(body: an.BodyMesh, sk: Skeleton, parts: dict[str, an.PartMesh],
     # head and neck: de Leva's head (VERT-CERV) split into a neck cylinder and the head
     hd = seg["head"]
     vert, cerv = sk.point("VERT"), sk.point("CERV")
-    axis_len = float(np.linalg.norm(vert - cerv))
     com_t = vert + (cerv - vert) * hd.com / hd.length
-    i_t = np.diag(np.array(hd.inertia) * (axis_len / hd.length) ** 2)
+    i_t = np.diag(np.array(hd.inertia))  # de Leva's, about the segment axes
     semi = np.array([0.056, 0.044, 0.066]) * h  # head half length, breadth, height
     centre = vert - np.array([0.0, 0.0, semi[2]])
     rn = 0.030 * h
