@@ -25,8 +25,9 @@ from hollowbody.body.anatomy import BodyMesh
 from hollowbody.hollow.boundary import solid_tets
 from hollowbody.hollow.spatial import TetLocator, TriangleSurface
 
-#: Segment groups that share a joint (their overlap at the joint is allowed).
-ADJACENT = {("trunk", "thigh"), ("trunk", "upper_arm"), ("trunk", "head"),
+#: Segment groups that share a joint and meet there (their overlap at the joint is
+#: allowed; the shoulder is not among them: the arm hangs clear of the trunk).
+ADJACENT = {("trunk", "thigh"), ("trunk", "head"),
             ("thigh", "shank"), ("shank", "foot"), ("upper_arm", "forearm"),
             ("forearm", "hand")}
 
