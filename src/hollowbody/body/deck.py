@@ -142,7 +142,7 @@ def _materials(d: Deck, body: Body) -> None:
         ts = tissue(name)
         d.add(DefineCurve(lcid=lcid, points=np.column_stack([ts.strain, ts.stress]).tolist(),
                           title=f"{name}: engineering stress [GPa] vs strain"))
-    for i, (key, m) in enumerate(MATERIALS.items(), start=1):
+    for i, m in enumerate(MATERIALS.values(), start=1):
         if m.law == "cortical":
             d.add(MatPlasticKinematic(mid=i, ro=m.density, e=m.e, pr=m.pr, sigy=m.sigy,
                                       etan=m.etan, beta=1.0, title=m.title))

@@ -5,7 +5,8 @@ chosen posture, writes the deck with its includes
 (:mod:`hollowbody.body.deck`), for ``tissue="hollow"`` converts the limb
 muscle and the torso's subcutaneous fat with
 :func:`hollowbody.hollow.convert.hollowize` (30 mm cells, 1.5 mm walls, the
-paper's Table 1 wall materials unless ``hollow_options`` says otherwise;
+paper's Table 1 wall materials, no self-contact, unless ``hollow_options``
+says otherwise;
 everything else, joints included, unchanged), checks it as a run would
 (mass, element counts, first time step, unsupported keywords, initial
 penetrations between segments) and writes ``report.json``, ``report.md``
@@ -77,7 +78,10 @@ def build_deck(opts: PedestrianOptions, hollow_options=None  # noqa: ANN001
         from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
 
         pids = hollow_parts(body)
-        deck, rep = hollowize(deck, Selection(parts=pids), hollow_options or HollowOptions())
+        # no self-contact by default, as the generated limb (docs/hollowize.md): it
+        # pushes tied wall edges apart and costs most of the run
+        deck, rep = hollowize(deck, Selection(parts=pids),
+                              hollow_options or HollowOptions(self_contact=False))
         info["conversion"] = rep
     return deck, info
 

@@ -143,8 +143,8 @@ def flesh_scales(stature: float, mass: float, mesh: float, sk: Skeleton) -> dict
 
 def shoulder_half_width(sk: Skeleton, scales: dict[str, float]) -> float:
     """Lateral position (mm) of the shoulder joint centres: the hanging upper arm clears the
-    trunk and the wrist end of the forearm and the hand clear the thigh's top by :data:`ARM_CLEARANCE`; at least
-    Winter's half shoulder width 0.1295 H."""
+    trunk, and the wrist end of the forearm and the hand clear the thigh's top, by
+    :data:`ARM_CLEARANCE`; at least Winter's half shoulder width 0.1295 H."""
     h = sk.stature
     sh = an.LIMB_SHAPES
     trunk = max(an.TRUNK_SHAPE["a"]) * h * scales["trunk"]

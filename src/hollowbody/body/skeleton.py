@@ -159,10 +159,10 @@ SEGMENT_AXES = {
 }
 
 
-def frame_from_axis(down: np.ndarray, forward: np.ndarray = np.array([1.0, 0.0, 0.0])
-                    ) -> np.ndarray:
-    """(3, 3) rows x, y, z: z = -down (unit, distal to proximal), x = ``forward`` made
-    perpendicular to z, y = z cross x."""
+def frame_from_axis(down: np.ndarray, forward: np.ndarray | None = None) -> np.ndarray:
+    """(3, 3) rows x, y, z: z = -down (unit, distal to proximal), x = ``forward`` (default
+    global x) made perpendicular to z, y = z cross x."""
+    forward = np.array([1.0, 0.0, 0.0]) if forward is None else np.asarray(forward, float)
     z = -np.asarray(down, float) / np.linalg.norm(down)
     x = forward - np.dot(forward, z) * z
     if np.linalg.norm(x) < 1e-9:
