@@ -45,7 +45,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--picture", action=argparse.BooleanOptionalAction, default=True,
                    help="write pedestrian.png (default: yes)")
     p.add_argument("--overwrite", action="store_true",
-                   help="write into a folder that already holds a pedestrian.k")
+                   help="write into a folder that already holds a pedestrian.k (default: "
+                        "such a folder is refused)")
     p.set_defaults(func=main)
 
 
