@@ -227,7 +227,7 @@ def fill_walls(x: np.ndarray, tets: np.ndarray, part_nodes: np.ndarray,
     cut = np.flatnonzero(~full)
     saddle = cut[(case[cut] == 5) | (case[cut] == 10)]
     centre_in = dict(zip(saddle.tolist(), locator.inside(
-        position(quads[saddle]).reshape(-1, 4, 3).mean(axis=1)
+        position(quads[saddle].ravel()).reshape(-1, 4, 3).mean(axis=1)
         if saddle.size else np.zeros((0, 3))).tolist()))
     node_xyz = _NodeCoords(position, moved, xc, n_lat_total)
     tri_q: list[list[int]] = []

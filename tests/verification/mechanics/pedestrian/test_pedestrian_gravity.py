@@ -1,0 +1,53 @@
+"""The open pedestrian stands on a rigid floor under gravity (coarse mesh, a few ms).
+
+Checks (``hollowbody run`` on the generated deck): normal termination with the
+run's quality ok; the energy balance closes (|ratio - 1| < 1 %: the joint
+stiffnesses, the floor and gravity all enter it); the feet stay on the floor
+(their rigid bodies move less than 0.5 mm vertically, the floor carries a
+positive normal force) and no joint centre drifts apart (history nodes of the
+knees follow the body: under 0.5 mm). The long standing run (150 ms, default
+mesh) is reported in docs/pedestrian.md, not run here; the hollow variant's short run
+takes minutes (its wall shells set a step several times smaller) and is marked slow.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+
+from hollowbody.body.generate import PedestrianOptions, generate
+from hollowbody.cli.main import main
+
+
+@pytest.mark.parametrize("tissue", ["solid", pytest.param("hollow", marks=pytest.mark.slow)])
+def test_standing_under_gravity(tmp_path, tissue: str) -> None:
+    r = generate(tmp_path, PedestrianOptions(mesh=50.0, end_time=3.0, picture=False,
+                                             tissue=tissue))
+    out = tmp_path / "run"
+    assert main(["run", str(tmp_path / "pedestrian.k"), "--out", str(out), "--quiet",
+                 "--no-vtk"]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "normal termination"
+    assert s["quality"] == "ok", s["quality_reasons"]
+    assert abs(s["energy_ratio"] - 1.0) < 0.01
+    feet = {p.pid for _, p in _feet(tmp_path)}
+    rows = [row for row in csv.DictReader((out / "rbdout.csv").open())
+            if int(row["part"]) in feet]
+    assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
+    wall = list(csv.DictReader((out / "rwforc.csv").open()))
+    assert float(wall[-1]["normal [kN]"]) > 0.0
+    hist = r["history_nodes"]
+    nodes = [row for row in csv.DictReader((out / "nodout.csv").open())
+             if int(row["node"]) in (hist["knee_l"], hist["knee_r"])]
+    assert max(abs(float(row["uz [mm]"])) for row in nodes) < 0.5
+
+
+def _feet(folder):
+    """(key, part) of the feet, read from the region decks' part titles."""
+    from hollowbody.io.keyword import Part, PartInertia, read_deck
+
+    deck = read_deck(folder / "pedestrian.k")
+    return [(p.title, p) for p in deck.of_type(PartInertia) + deck.of_type(Part)
+            if p.title.startswith("foot_")]
