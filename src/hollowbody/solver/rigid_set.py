@@ -58,6 +58,21 @@ def _gather(x, f, mom, nodes, offsets, xc, force, moment):  # noqa: ANN001, ANN2
         moment[b, 0], moment[b, 1], moment[b, 2] = m0 + t0, m1 + t1, m2 + t2
 
 
+@njit(cache=True, inline="always")
+def _rotate_inertia(i0, r, out):  # noqa: ANN001, ANN202
+    """out (3, 3) = r i0 r^T: an inertia (kg*mm^2) given in the body's initial axes,
+    turned by the rotation r (3, 3)."""
+    for i in range(3):
+        for j in range(3):
+            s = 0.0
+            for p in range(3):
+                rp = 0.0
+                for q in range(3):
+                    rp += i0[p, q] * r[j, q]
+                s += r[i, p] * rp
+            out[i, j] = s
+
+
 @njit(cache=True)
 def _advance_velocity(dt, mass, inertia0, rot, rot_w, force, moment, vel, omega,  # noqa: ANN001
                       vel_free, omega_free, fixed_t, fixed_r, presc_t, presc_r,  # noqa: ANN001
@@ -72,30 +87,13 @@ def _advance_velocity(dt, mass, inertia0, rot, rot_w, force, moment, vel, omega,
             if fixed_t[b, k] or presc_t[b, k]:
                 acc = 0.0
             vel[b, k] = 0.0 if fixed_t[b, k] else vel[b, k] + dt * acc
-        # I = R I0 R^T
-        for i in range(3):
-            for j in range(3):
-                s = 0.0
-                for p in range(3):
-                    rp = 0.0
-                    for q in range(3):
-                        rp += inertia0[b, p, q] * rot[b, j, q]
-                    s += rot[b, i, p] * rp
-                inertia[b, i, j] = s
+        _rotate_inertia(inertia0[b], rot[b], inertia[b])  # I = R I0 R^T
         for k in range(3):
             omega_free[b, k] = omega[b, k]
         if inertia[b, 0, 0] > 0.0 or inertia[b, 1, 1] > 0.0 or inertia[b, 2, 2] > 0.0:
             # L^{n-1/2} = I(R_w) w with R_w the rotation of the last velocity update
             w0, w1, w2 = omega[b, 0], omega[b, 1], omega[b, 2]
-            for i in range(3):
-                for j in range(3):
-                    s = 0.0
-                    for p in range(3):
-                        rp = 0.0
-                        for q in range(3):
-                            rp += inertia0[b, p, q] * rot_w[b, j, q]
-                        s += rot_w[b, i, p] * rp
-                    iw[i, j] = s
+            _rotate_inertia(inertia0[b], rot_w[b], iw)
             c0 = iw[0, 0] * w0 + iw[0, 1] * w1 + iw[0, 2] * w2 + dt * moment[b, 0]
             c1 = iw[1, 0] * w0 + iw[1, 1] * w1 + iw[1, 2] * w2 + dt * moment[b, 1]
             c2 = iw[2, 0] * w0 + iw[2, 1] * w1 + iw[2, 2] * w2 + dt * moment[b, 2]
