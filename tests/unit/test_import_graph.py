@@ -38,7 +38,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("api", "engines"),
     ("hollow", "curves", "rating"),
     ("scenarios", "body"),
-    ("calibrate",),
+    ("calibrate", "validation"),
     ("report",),
     ("cli", "testing"),
 ]
