@@ -61,11 +61,20 @@ def comment(lines: list[str]) -> RawKeyword:
 
 
 def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
-                    title: str = "hollowbody open pedestrian") -> tuple[Deck, dict]:
+                    title: str = "hollowbody open pedestrian", omit: tuple[str, ...] = ()
+                    ) -> tuple[Deck, dict]:
     """(main deck with its includes, info) for ``body``; info: history node ids by
-    name, joint ids by name, element counts."""
+    name, joint ids by name, element counts, omitted part ids.
+
+    ``omit``: de Leva segment labels (e.g. ``("forearm_l", "hand_l")``) whose parts,
+    nodes and joints are left out of the deck (a segment test that removes a limb's
+    distal segments); ValueError for a label that is no limb segment or extremity.
+    Default: the whole body (the output does not change).
+    """
     mesh = body.mesh
     x = mesh.coords()
+    gone = omitted_parts(body, omit)
+    parts = [p for p in mesh.parts if p.pid not in gone]
     main = Deck()
     main.title = title
     main.add(ControlTermination(endtim=end_time))
@@ -77,10 +86,10 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     main.add(DatabaseBinaryD3plot(dt=max(output_dt, end_time / 30.0)))
     files = {r: Deck() for r in REGIONS}
     mats = Deck()
-    _materials(mats, body)
+    _materials(mats, body, gone)
     # node regions: the region of the first part that uses the node
     region_of = np.full(x.shape[0], -1)
-    for p in mesh.parts:
+    for p in parts:
         idx = np.unique(p.conn)
         free = idx[region_of[idx] < 0]
         region_of[free] = REGIONS.index(p.region)
@@ -92,10 +101,12 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     eid = 1
     secs = _shell_sections(body)
     for p in mesh.parts:
-        d = files[p.region]
         n = p.conn.shape[0]
         ids = np.arange(eid, eid + n)
         eid += n
+        if p.pid in gone:
+            continue
+        d = files[p.region]
         if p.kind == "solid":
             d.add_solids(ids, p.pid, p.conn + 1)
         else:
@@ -113,7 +124,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         else:
             d.add(Part(pid=p.pid, secid=secid, mid=mid, hgid=hg, title=p.name))
     joints = Deck()
-    info = _joints(joints, body, x.shape[0] + 1)
+    info = _joints(joints, body, x.shape[0] + 1, gone)
     feet = np.unique(np.concatenate([body.parts[f"foot_{s}"].conn.ravel() for s in "lr"])) + 1
     joints.add(SetNodeList(sid=1, nodes=feet, title="feet (floor contact)"))
     main.add(RigidwallPlanar(nsid=1, xh=0.0, yh=0.0, zh=1.0, fric=0.6))
@@ -125,7 +136,24 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         main.add_include(f"{name}.k", files[name])
     main.add_include("joints.k", joints)
     info["elements"] = counts
+    info["omitted_parts"] = sorted(gone)
     return main, info
+
+
+#: Segments that may be left out of the deck (the arms' distal segments).
+OMITTABLE = tuple(f"{s}_{side}" for side in "lr" for s in ("upper_arm", "forearm", "hand"))
+
+
+def omitted_parts(body: Body, omit: tuple[str, ...]) -> set[int]:
+    """Part ids of the segments ``omit`` (labels of :data:`OMITTABLE`, e.g.
+    ``forearm_l``, ``hand_l``); ValueError for another label."""
+    gone: set[int] = set()
+    for label in omit:
+        if label not in OMITTABLE:
+            raise ValueError(f"cannot leave out segment {label!r}; these can be: "
+                             f"{', '.join(OMITTABLE)}")
+        gone.update(p.pid for p in body.mesh.parts if set(p.segment.tolist()) == {label})
+    return gone
 
 
 def _shell_sections(body: Body) -> dict[float, int]:
@@ -133,7 +161,7 @@ def _shell_sections(body: Body) -> dict[float, int]:
     return {t: 10 + i for i, t in enumerate(ts)}
 
 
-def _materials(d: Deck, body: Body) -> None:
+def _materials(d: Deck, body: Body, gone: set[int]) -> None:
     d.add(SectionSolid(secid=1, elform=1))
     for t, sid in _shell_sections(body).items():
         d.add(SectionShell(secid=sid, elform=2, nip=3, t1=t, t2=t, t3=t, t4=t))
@@ -152,13 +180,13 @@ def _materials(d: Deck, body: Body) -> None:
         elif m.law == "elastic":
             d.add(MatElastic(mid=i, ro=m.density, e=m.e, pr=m.pr, title=m.title))
     for p in body.mesh.parts:
-        if p.rigid:
+        if p.rigid and p.pid not in gone:
             d.add(MatRigid(mid=1000 + p.pid, ro=part_density(body, p),
                            e=MATERIALS["rigid"].e, pr=MATERIALS["rigid"].pr,
                            title=f"rigid: {p.name}"))
 
 
-def _joints(d: Deck, body: Body, first_node: int) -> dict:
+def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     sk = body.skeleton
     pid = rigid_bodies(body)
     nid = first_node
@@ -175,6 +203,8 @@ def _joints(d: Deck, body: Body, first_node: int) -> dict:
     nodes, xyz = [], []
     damp = curve(DAMPING * 1000.0, "joint damping [kN mm] vs angle rate [rad/ms]")
     for j, spec in enumerate(joint_specs(), start=1):
+        if pid[spec.body_a] in gone or pid[spec.body_b] in gone:
+            continue
         c = sk.point(spec.centre)
         fr = sk.frames[spec.frame]
         n1, n2 = nid, nid + 1
@@ -209,8 +239,8 @@ def _joints(d: Deck, body: Body, first_node: int) -> dict:
         xyz.append(point)
         hist[name] = nid
         nid += 1
-    hist["knee_l"] = knee_nodes["knee_l"]
-    hist["knee_r"] = knee_nodes["knee_r"]
+    for name in ("knee_l", "knee_r"):
+        hist[name] = knee_nodes[name]
     d.add_nodes(np.array(nodes), np.array(xyz))
     d.add(ConstrainedRigidBodies(pidm=pid["pelvis"], pids=pid["sacrum_part"]))
     return {"history": hist, "joints": jids}

@@ -63,21 +63,22 @@ class PedestrianOptions:
             raise ValueError(f"--end-time must be positive (got {self.end_time:g} ms)")
 
 
-def build_deck(opts: PedestrianOptions, hollow_options=None  # noqa: ANN001
-               ) -> tuple[Deck, dict]:
+def build_deck(opts: PedestrianOptions, hollow_options=None,  # noqa: ANN001
+               omit: tuple[str, ...] = ()) -> tuple[Deck, dict]:
     """(deck, info) of the pedestrian; info: body, skeleton, history nodes, joints,
-    hollow conversion report (or None)."""
+    omitted part ids, hollow conversion report (or None). ``omit``: arm segments left
+    out of the deck (:func:`hollowbody.body.deck.pedestrian_deck`)."""
     opts.validate()
     body = build_body(opts.height, opts.mass, opts.mesh, opts.posture, opts.struck)
     deck, info = pedestrian_deck(
         body, opts.end_time, title=f"hollowbody open pedestrian: {opts.tissue}, "
-        f"{opts.posture}, {opts.height:g} mm, {opts.mass:g} kg")
+        f"{opts.posture}, {opts.height:g} mm, {opts.mass:g} kg", omit=tuple(omit))
     info["body"] = body
     info["conversion"] = None
     if opts.tissue == "hollow":
         from hollowbody.hollow.convert import HollowOptions, Selection, hollowize
 
-        pids = hollow_parts(body)
+        pids = [p for p in hollow_parts(body) if p not in info["omitted_parts"]]
         # no self-contact by default, as the generated limb (docs/hollowize.md): it
         # pushes tied wall edges apart and costs most of the run
         deck, rep = hollowize(deck, Selection(parts=pids),

@@ -67,7 +67,8 @@ from hollowbody.model import model as m
 from hollowbody.model.rigid_bodies import local_axes_inertia
 
 #: *DATABASE_* ASCII files whose intervals go into ``OutputRequests.intervals``.
-OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rwforc", "deforc")
+OUTPUT_DATABASES = ("glstat", "rcforc", "nodout", "spcforc", "matsum", "rwforc", "deforc",
+                    "rbdout")
 # *NODE TC / RC and *MAT_RIGID CON codes -> constrained axes.
 _AXES = {0: (), 1: (0,), 2: (1,), 3: (2,), 4: (0, 1), 5: (1, 2), 6: (2, 0), 7: (0, 1, 2)}
 _MOTION_DOFS = (1, 2, 3, 5, 6, 7)

@@ -30,15 +30,29 @@ T = TypeVar("T", bound=KeywordItem)
 @dataclass(kw_only=True, eq=False)
 class Include(KeywordItem):
     """*INCLUDE: ``filename`` as written (relative to the including file's
-    folder) and the included file's ``deck``."""
+    folder) and the included file's ``deck``.
+
+    ``external``: the file is someone else's (a user's model): writing the deck
+    with its includes writes only the *INCLUDE card, never the file, and the
+    name may be absolute. Names longer than 78 characters are continued on the
+    next line with a trailing `` +`` (LS-DYNA's long file names).
+    """
 
     filename: str
     deck: Deck = field(default_factory=lambda: Deck())
+    external: bool = False
 
     KEYWORD: ClassVar[str] = "INCLUDE"
 
     def to_lines(self, fmt: str = "standard") -> list[str]:
-        return ["*INCLUDE", self.filename]
+        name, lines = self.filename, ["*INCLUDE"]
+        while len(name) > 78:
+            cut = 78
+            while cut > 1 and " " in name[cut - 1:cut + 1]:  # the reader strips blanks
+                cut -= 1
+            lines.append(name[:cut] + " +")
+            name = name[cut:]
+        return lines + [name]
 
 
 class Deck:

@@ -38,6 +38,7 @@ def write_deck(deck: Deck, path: str | os.PathLike[str], flatten: bool = True,
     With ``flatten=False`` every included deck is written too, at its
     ``filename`` relative to ``path``'s folder (folders are created);
     absolute include names are refused (they would overwrite the source).
+    An ``external`` include (someone else's file) is referred to, never written.
     """
     if fmt not in ("standard", "long"):
         raise ValueError(f"fmt must be 'standard' or 'long', not {fmt!r}")
@@ -47,7 +48,7 @@ def write_deck(deck: Deck, path: str | os.PathLike[str], flatten: bool = True,
     path.write_text("\n".join(deck_lines(deck, flatten, fmt)) + "\n", encoding="latin-1")
     if not flatten:
         for item in deck.items:
-            if isinstance(item, Include):
+            if isinstance(item, Include) and not item.external:
                 if os.path.isabs(item.filename):
                     raise ValueError(f"include '{item.filename}' has an absolute path; "
                                      "write with flatten=True or give a relative name")
