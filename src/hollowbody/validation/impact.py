@@ -11,7 +11,8 @@ default stature and mass) or on a user's model (``model`` + its landmark entry):
   *MAT_RIGID CMO = 1), free along its path, starting at the test speed with its
   face ``GAP`` mm from the first skin its face meets;
 - *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE: hub = master (part), body = slave
-  (part set of the parts it may touch), friction ``FRICTION``, SOFT = 1;
+  (part set of the parts it may touch), friction ``FRICTION``, SOFT = 1, contact
+  damping ``VDC``;
 - outputs: RCFORC, RBDOUT, NODOUT (with the reference node), GLSTAT, MATSUM
   and the pedestrian's JNTFORC / RWFORC every ``OUTPUT_DT`` ms, d3plot every
   ``D3PLOT_DT`` ms; termination at the end time; gravity and the floor of the
@@ -79,6 +80,10 @@ HUB_LENGTH = 60.0
 #: Friction of the hub-body contact (static = dynamic), as hollowbody's other
 #: tissue-impactor contacts (block, limb bending).
 FRICTION = 0.2
+#: Viscous damping of the hub-body contact (% of critical, LS-DYNA VDC): damps the
+#: penalty springs' chatter between the heavy rigid hub and the light skin nodes (without
+#: it the force samples alternate between zero and several times the mean).
+VDC = 20.0
 #: History output interval (ms; the ratings resample at 0.1 ms) and d3plot interval.
 OUTPUT_DT = 0.1
 D3PLOT_DT = 2.0
@@ -200,12 +205,13 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
     ref = history[REFERENCE[c.name]]
     ids = dataclasses.replace(ids, node=ids.node + 10, element=ids.element + 10)
     body_model = build_model(deck)
-    hub, touch, axis_pt, hit = _place_hub(test, ids, body_model, slave, point, d, c, speed)
+    hub, touch, axis_gap, hit = _place_hub(test, ids, body_model, slave, point, d, c,
+                                           speed)
     test.add(SetPartList(sid=ids.set, parts=slave, title="body parts the hub may touch"))
     test.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=ids.contact,
                      heading="hub-body", ssid=ids.set, sstyp=2, msid=hub.pid, mstyp=3,
-                     fs=FRICTION, fd=FRICTION, soft=1))
-    notes += _hub_notes(c, hub, touch, axis_pt, hit, point, slave, body_model, d)
+                     fs=FRICTION, fd=FRICTION, vdc=VDC, soft=1))
+    notes += _hub_notes(c, hub, touch, axis_gap, hit, point, slave, d)
     if c.name in ("thorax", "abdomen"):
         arms = sorted(p.pid for k, p in body.parts.items()
                       if k.startswith(("upper_arm_", "forearm_", "hand_")))
@@ -219,16 +225,17 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
                      "trunk and the left thigh")
     if c.name == "shoulder":
         notes.append("the axis passes through the left glenohumeral joint centre; the model "
-                     "has no clavicle, scapula or deltoid (the joint is on T1): the hub meets "
-                     "the upper arm's lateral skin below the joint and then the trunk")
+                     "has no clavicle, scapula or deltoid (the joint is on T1) and the arm's "
+                     "flesh stops 12 mm below the joint centre: the hub first meets the upper "
+                     "arm's lateral skin, below its axis")
     if tissue == "hollow":
         conv = info["conversion"]
         hollow = sorted(p.pid for p in conv.parts) if conv is not None else []
         notes.append(f"hollow variant: converted parts keep their ids, so their shells "
                      f"(parts {sorted(set(hollow) & set(slave))}) are in the slave set")
-    test.items.insert(0, comment([f"hollowbody validate: {c.name}, {speed:g} m/s, "
-                                  f"{c.source[:40]}", f"hub part {hub.pid}, contact "
-                                  f"{ids.contact}, reference node {ref}"]))
+    test.items.insert(0, comment([f"hollowbody validate: {c.name}, {speed:g} m/s "
+                                  f"({c.source.split(',')[0]})", f"hub part {hub.pid}, "
+                                  f"contact {ids.contact}, reference node {ref}"]))
     deck.add_include("impact.k", test)
     deck.title = f"hollowbody validate {c.name} {speed:g} m/s: open pedestrian, {tissue}"
     return Setup(case=c.name, speed=speed, tissue=tissue, deck=deck, end_time=end,
@@ -292,8 +299,9 @@ def _place_hub(test: Deck, ids: FreeIds, body_model, slave: list[int], point: np
 
 
 def _hub_notes(c: cases.Case, hub: Hub, touch: np.ndarray, axis_gap: float | None,
-               hit: np.ndarray, point: np.ndarray, slave: list[int], model,  # noqa: ANN001
-               d: np.ndarray) -> list[str]:
+               hit: np.ndarray, point: np.ndarray, slave: list[int], d: np.ndarray
+               ) -> list[str]:
+    """What the hub, its start and its contact are, in words."""
     axes = "".join("xyz"[k] for k in hub.held)
     guided = (f"rotations and the {axes} translation{'s' if len(axes) > 1 else ''} held"
               if axes else "rotations held")
@@ -314,7 +322,9 @@ def _hub_notes(c: cases.Case, hub: Hub, touch: np.ndarray, axis_gap: float | Non
                    f"{np.round(hit, 1).tolist()} mm (the impact point)")
     out.append(f"contact: *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE, hub part {hub.pid} master, "
                f"slave part set of parts {slave}; friction {FRICTION:g} (as hollowbody's "
-               "other tissue-impactor contacts), SOFT=1")
+               f"other tissue-impactor contacts), SOFT=1, viscous damping VDC={VDC:g} % of "
+               "critical (damps the contact's chatter between the heavy hub and the light "
+               "skin nodes)")
     return out
 
 
@@ -366,10 +376,10 @@ def _user_setup(c: cases.Case, speed: float, end: float, model: Path, landmarks:
     test.add(SetPartList(sid=ids.set, parts=slave, title="body parts the hub may touch"))
     test.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=ids.contact,
                      heading="hub-body", ssid=ids.set, sstyp=2, msid=hub.pid, mstyp=3,
-                     fs=FRICTION, fd=FRICTION, soft=1))
+                     fs=FRICTION, fd=FRICTION, vdc=VDC, soft=1))
     test.add(DatabaseHistoryNode(ids=[ref]))
     notes = [f"user model {model}: included unchanged; landmarks from {where}"]
-    notes += _hub_notes(c, hub, touch, axis_gap, hit, point, slave, body_model, d)
+    notes += _hub_notes(c, hub, touch, axis_gap, hit, point, slave, d)
     own_gravity = bool(user.of_type(LoadBody))
     if gravity and not own_gravity:
         test.add(DefineCurve(lcid=ids.curve, points=[[0.0, 1.0], [1.0e6, 1.0]],
