@@ -203,12 +203,12 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     nodes, xyz = [], []
     damp = curve(DAMPING * 1000.0, "joint damping [kN mm] vs angle rate [rad/ms]")
     for j, spec in enumerate(joint_specs(), start=1):
+        n1, n2 = nid, nid + 1
+        nid += 2  # ids as in the whole body, also when a joint is left out
         if pid[spec.body_a] in gone or pid[spec.body_b] in gone:
             continue
         c = sk.point(spec.centre)
         fr = sk.frames[spec.frame]
-        n1, n2 = nid, nid + 1
-        nid += 2
         nodes += [n1, n2]
         xyz += [c, c]
         d.add(ConstrainedExtraNodesNode(pid=pid[spec.body_a], nid=n1))
