@@ -23,7 +23,7 @@ from typing import Any
 
 from hollowbody.report.index import markdown_to_html
 from hollowbody.validation.cases import CASES, ORDER
-from hollowbody.validation.ratings import LABELS, test_data
+from hollowbody.validation.ratings import LABELS, reference_data
 from hollowbody.validation.runner import RunRecord
 
 COLOURS = {"solid": "tab:blue", "hollow": "tab:red", "user": "tab:green"}
@@ -60,7 +60,7 @@ def plot_case(records: list[RunRecord], path: str | Path, corridor=None) -> Path
     for i, speed in enumerate(speeds):
         for j, q in enumerate(quantities):
             ax = axes[i][j]
-            data = test_data(case, speed, q, corridor)
+            data = reference_data(case, speed, q, corridor)
             if data is not None and data.corridor is not None:
                 ring = data.corridor.outline
                 ax.fill(ring[:, 0], ring[:, 1], color="0.6", alpha=0.3, lw=0,

@@ -89,7 +89,7 @@ def _midline(c: Corridor) -> tuple[np.ndarray, np.ndarray]:
     return x[keep], (0.5 * (c.lower + c.upper))[keep]
 
 
-def test_data(case: Case, speed: float, quantity: str,
+def reference_data(case: Case, speed: float, quantity: str,
               user_corridor: Corridor | None = None) -> TestData | None:
     """The data ``quantity`` of ``case`` at ``speed`` is rated against, or None."""
     if user_corridor is not None:
@@ -135,9 +135,8 @@ def rate(x: np.ndarray, y: np.ndarray, ref: tuple[np.ndarray, np.ndarray],
     out.iso, out.iso_grade = i.overall, i.grade
     out.window = (c.t_start, c.t_end)
     if corridor is not None:
-        lo, hi = corridor.x_range()
-        m = (x >= lo) & (x <= hi)
-        out.inside = float(corridor.fraction_inside(x[m], y[m])) if np.any(m) else 0.0
+        inside = corridor.fraction_inside(x, y)
+        out.inside = float(inside) if np.isfinite(inside) else None
     return out
 
 
@@ -148,7 +147,7 @@ def rate_run(case: Case, speed: float, sig: Signals, solid: Signals | None = Non
     out: list[Rating] = []
     for q in case.quantities:
         x, y = sig.curve(q)
-        data = test_data(case, speed, q, user_corridor)
+        data = reference_data(case, speed, q, user_corridor)
         if data is not None and data.reference is not None:
             out.append(rate(x, y, data.reference, q, "test", data.corridor))
         if solid is not None:

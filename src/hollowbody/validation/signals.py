@@ -10,9 +10,9 @@ record:
   used for impactor forces) unless ``cfc`` is None;
 - impactor travel u(t) [mm]: ``rbdout.csv`` of the impactor part projected on
   ``direction``;
-- deflection d(t) [mm]: u minus the displacement of ``reference_node``
-  (``nodout.csv``) along ``direction`` (impacts); the impactor travel past
-  first contact (bending, no reference node);
+- deflection d(t) [mm]: u minus the gap (speed x contact_time: the free
+  flight up to the skin), minus the displacement of ``reference_node``
+  (``nodout.csv``) along ``direction`` when the set-up names one (impacts);
 - moment M(d) [kN*mm]: F a b / span at the load point (bending).
 
 Time zero of every signal is ``Setup.contact_time`` (the face reaching the
@@ -123,9 +123,9 @@ def read_signals(run_dir: str | Path, s: Setup, cfc: float | None = FORCE_CFC) -
             raise UserInputError(f"{run / 'nodout.csv'}: no rows for reference node "
                                  f"{s.reference_node}")
         un = np.column_stack([nd[f"u{c} [mm]"][nsel] for c in "xyz"]) @ d
-        deflection = travel - _resample(nd["time [ms]"][nsel], un, t)
-    else:
-        deflection = travel - s.speed * s.contact_time
+        travel = travel - _resample(nd["time [ms]"][nsel], un, t)
+    # the free flight up to the skin (the gap) is not deflection
+    deflection = travel - s.speed * s.contact_time
     if cfc is not None and t.size > 1:
         grid = np.linspace(t[0], t[-1], t.size)
         force = np.interp(t, grid, cfc_filter(grid, np.interp(grid, t, force_raw), cfc))
