@@ -8,7 +8,8 @@ record:
   the force the body applies to the impactor) projected on ``-direction``:
   positive when the body pushes back; SAE J211 CFC 180 filtered (the class
   used for impactor forces) unless ``cfc`` is None;
-- impactor travel u(t) [mm]: ``rbdout.csv`` of the impactor part projected on
+- impactor travel u(t) [mm]: the ``nodout.csv`` displacement of
+  ``impactor_node`` (else ``rbdout.csv`` of the impactor part) projected on
   ``direction``;
 - deflection d(t) [mm]: u minus the gap (speed x contact_time: the free
   flight up to the skin), minus the displacement of ``reference_node``
@@ -94,6 +95,16 @@ def _resample(t: np.ndarray, y: np.ndarray, grid: np.ndarray) -> np.ndarray:
     return np.interp(grid, t[order], y[order])
 
 
+def _node_along(nd: dict[str, np.ndarray], node: int, d: np.ndarray, t: np.ndarray,
+                run: Path, what: str) -> np.ndarray:
+    """Displacement of ``node`` along ``d`` [mm] at times ``t`` (from nodout rows)."""
+    sel = nd["node"] == node
+    if not np.any(sel):
+        raise UserInputError(f"{run / 'nodout.csv'}: no rows for {what} {node}")
+    u = np.column_stack([nd[f"u{c} [mm]"][sel] for c in "xyz"]) @ d
+    return _resample(nd["time [ms]"][sel], u, t)
+
+
 def read_signals(run_dir: str | Path, s: Setup, cfc: float | None = FORCE_CFC) -> Signals:
     """The signals of the run in ``run_dir`` of set-up ``s`` (see the module doc).
 
@@ -109,21 +120,21 @@ def read_signals(run_dir: str | Path, s: Setup, cfc: float | None = FORCE_CFC) -
     t = rc["time [ms]"][sel]
     fm = np.column_stack([rc[f"master_f{c} [kN]"][sel] for c in "xyz"])
     force_raw = -(fm @ d)
-    rb = _rows(run / "rbdout.csv", "rigid-body motion")
-    rsel = rb["part"] == s.impactor_pid
-    if not np.any(rsel):
-        raise UserInputError(f"{run / 'rbdout.csv'}: no rows for impactor part "
-                             f"{s.impactor_pid}")
-    u = np.column_stack([rb[f"u{c} [mm]"][rsel] for c in "xyz"]) @ d
-    travel = _resample(rb["time [ms]"][rsel], u, t)
-    if s.reference_node is not None:
+    nd = None
+    if s.impactor_node is not None:
         nd = _rows(run / "nodout.csv", "node histories")
-        nsel = nd["node"] == s.reference_node
-        if not np.any(nsel):
-            raise UserInputError(f"{run / 'nodout.csv'}: no rows for reference node "
-                                 f"{s.reference_node}")
-        un = np.column_stack([nd[f"u{c} [mm]"][nsel] for c in "xyz"]) @ d
-        travel = travel - _resample(nd["time [ms]"][nsel], un, t)
+        travel = _node_along(nd, s.impactor_node, d, t, run, "impactor node")
+    else:
+        rb = _rows(run / "rbdout.csv", "rigid-body motion")
+        rsel = rb["part"] == s.impactor_pid
+        if not np.any(rsel):
+            raise UserInputError(f"{run / 'rbdout.csv'}: no rows for impactor part "
+                                 f"{s.impactor_pid}")
+        u = np.column_stack([rb[f"u{c} [mm]"][rsel] for c in "xyz"]) @ d
+        travel = _resample(rb["time [ms]"][rsel], u, t)
+    if s.reference_node is not None:
+        nd = nd if nd is not None else _rows(run / "nodout.csv", "node histories")
+        travel = travel - _node_along(nd, s.reference_node, d, t, run, "reference node")
     # the free flight up to the skin (the gap) is not deflection
     deflection = travel - s.speed * s.contact_time
     if cfc is not None and t.size > 1:

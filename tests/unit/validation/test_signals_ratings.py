@@ -47,6 +47,7 @@ def write_run(folder, s: Setup, force, ref_disp, t) -> None:
         rc.write([ti, s.contact_id + 1, 1.0, 2.0, 3.0, -1.0, -2.0, -3.0])  # another contact
         rb.write([ti, s.impactor_pid, *(s.speed * ti * d), *(s.speed * d), *f_hub])
         nd.write([ti, s.reference_node, *(ref_disp(ti) * d), 0.0, 0.0, 0.0])
+        nd.write([ti, 5, *(s.speed * ti * d), *(s.speed * d)])  # a node of the hub
     for w in (rc, rb, nd):
         w.close()
 
@@ -68,6 +69,9 @@ def test_signals_are_the_projected_histories(tmp_path):
     np.testing.assert_allclose(sig.deflection, 4.4 * t - 0.05 * t * t - 4.4 * 0.5,
                                atol=1e-6)
     assert sig.moment is None
+    # the same travel from a history node of the hub (what external engines give)
+    by_node = read_signals(tmp_path, _setup(impactor_node=5, impactor_pid=-1), cfc=None)
+    np.testing.assert_allclose(by_node.deflection, sig.deflection, atol=1e-9)
     tt, ff = sig.curve("force")
     assert tt[0] >= 0.0 and ff.size == np.count_nonzero(sig.time >= 0.0)
     # the loading branch ends at the largest deflection (d' = 4.4 - 0.1 t = 0 at 44 ms:
