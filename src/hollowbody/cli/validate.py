@@ -55,6 +55,15 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                         "bounds (x, lower, upper); force-time in ms, kN")
     p.add_argument("--threads", default=None,
                    help="solver threads (default: the run's default)")
+    p.add_argument("--engine", choices=("hollowbody", "lsdyna", "openradioss"),
+                   default="hollowbody",
+                   help="solver that runs the decks (default: hollowbody's own; see "
+                        "docs/engines.md)")
+    p.add_argument("--np", type=int, default=1,
+                   help="MPI ranks of an external engine (default 1)")
+    p.add_argument("--engine-path", default=None,
+                   help="the external engine's executable or folder (default: found on "
+                        "the PATH or from LSDYNA / OPENRADIOSS_PATH)")
     p.add_argument("--dry-run", action="store_true",
                    help="write the set-up decks without running them")
     p.add_argument("--out", type=Path, default=Path("validation"),
@@ -117,6 +126,8 @@ def main(args: argparse.Namespace) -> int:
         raise UserInputError("--corridor rates one case: give exactly one CASE")
     if not 10.0 <= args.mesh <= 50.0:
         raise UserInputError(f"--mesh must be between 10 and 50 mm (got {args.mesh:g})")
+    if args.np < 1:
+        raise UserInputError(f"--np must be at least 1 (got {args.np})")
     if args.end_time is not None and not args.end_time > 0.0:
         raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
     landmarks = None
@@ -152,7 +163,9 @@ def _run(args, cases, speeds, tissues, landmarks, corridor) -> int:  # noqa: ANN
             records += run_case(c, speeds[c.name], tissues, args.out, mesh=args.mesh,
                                 end_time=args.end_time, model=args.model, landmarks=lm,
                                 landmarks_path=args.landmarks, corridor=corridor,
-                                dry_run=args.dry_run, quiet=False, threads=args.threads)
+                                dry_run=args.dry_run, quiet=False, threads=args.threads,
+                                engine=args.engine, np_=args.np,
+                                engine_path=args.engine_path)
     except KeyboardInterrupt:
         interrupted = True
         print("interrupted: reporting the runs so far")

@@ -129,12 +129,32 @@ def _read_results(rec: RunRecord, s: Setup) -> None:
         rec.peak_force, rec.peak_time = float(f[k]), float(t[k])
 
 
+def _run_on_engine(s: Setup, deck: Path, work: Path, engine: str, np_: int,
+                   threads: int | str | None, engine_path: str | None, quiet: bool) -> Path:
+    """Run ``deck`` on an external engine in ``work``; the folder of its results."""
+    from hollowbody.engines.runner import execute, plan_run
+
+    if s.impactor_node is None:
+        raise UserInputError(f"{s.case}: the set-up names no history node of the impactor, "
+                             "which the results of an external engine need")
+    nthreads = int(threads) if isinstance(threads, int) or str(threads).isdigit() else 1
+    prep = plan_run(engine, deck, work, np_=np_, threads=nthreads, engine_path=engine_path,
+                    end_time=s.end_time)
+    execute(prep, quiet=quiet)
+    return work
+
+
 def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 30.0,
             end_time: float | None = None, model: Path | None = None,
             landmarks: dict | None = None, landmarks_path: Path | None = None,
             dry_run: bool = False, quiet: bool = True, threads: int | str | None = None,
+            engine: str = "hollowbody", np_: int = 1, engine_path: str | None = None,
             log: Callable[[str], None] = print) -> RunRecord:
-    """Set up, write and (unless ``dry_run``) run one speed and tissue of ``case``."""
+    """Set up, write and (unless ``dry_run``) run one speed and tissue of ``case``.
+
+    ``engine``: ``hollowbody`` (the embedded solver), ``lsdyna`` or ``openradioss``
+    (run in ``<folder>/<engine>`` with ``np_`` ranks; their results are converted to
+    the same histories, :mod:`hollowbody.engines`)."""
     label = "user" if model is not None else tissue
     folder = out / case.name / f"{speed:g}ms" / label
     rec = RunRecord(case.name, speed, label, folder)
@@ -147,12 +167,17 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     if dry_run:
         rec.status = "not run (dry run)"
         return rec
-    from hollowbody.api import run_deck
-
-    log(f"{case.name} {speed:g} m/s {label}: running {s.end_time:g} ms -> {folder}")
+    log(f"{case.name} {speed:g} m/s {label}: running {s.end_time:g} ms on {engine} -> "
+        f"{folder}")
     try:
-        run_deck(deck, folder, end_time=s.end_time, quiet=quiet, vtk=False, overwrite=True,
-                 threads=threads)
+        if engine == "hollowbody":
+            from hollowbody.api import run_deck
+
+            run_deck(deck, folder, end_time=s.end_time, quiet=quiet, vtk=False,
+                     overwrite=True, threads=threads)
+        else:
+            rec.folder = _run_on_engine(s, deck, folder / engine, engine, np_, threads,
+                                        engine_path, quiet)
     except KeyboardInterrupt:
         rec.status, rec.reason = "interrupted", "stopped by the user"
         _read_summary(rec)
@@ -170,7 +195,8 @@ def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], ou
              mesh: float = 30.0, end_time: float | None = None, model: Path | None = None,
              landmarks: dict | None = None, landmarks_path: Path | None = None,
              corridor: Corridor | None = None, dry_run: bool = False, quiet: bool = True,
-             threads: int | str | None = None,
+             threads: int | str | None = None, engine: str = "hollowbody", np_: int = 1,
+             engine_path: str | None = None,
              log: Callable[[str], None] = print) -> list[RunRecord]:
     """Every speed and tissue of ``case``, rated (hollow also against solid)."""
     records: list[RunRecord] = []
@@ -181,7 +207,8 @@ def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], ou
                           end_time=end_time if end_time is not None
                           else end_time_of(case, speed),
                           model=model, landmarks=landmarks, landmarks_path=landmarks_path,
-                          dry_run=dry_run, quiet=quiet, threads=threads, log=log)
+                          dry_run=dry_run, quiet=quiet, threads=threads, engine=engine,
+                          np_=np_, engine_path=engine_path, log=log)
             by_tissue[rec.tissue] = rec
             records.append(rec)
         solid = by_tissue.get("solid")
