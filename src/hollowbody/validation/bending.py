@@ -47,6 +47,7 @@ axis (default: normal to the travel and to the limb).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -84,6 +85,8 @@ FRICTION = 0.2  # impactor-skin, static and dynamic
 IMPACTOR_T = 1.0  # mm, shell thickness of the rigid cylinder
 IMPACTOR_MASS = 5.0  # kg (driven: any value)
 OUTPUT_DT = 0.1  # ms, the histories (the ratings resample at 0.1 ms)
+#: *CONTROL_TERMINATION DTMIN with ERODE 1 (as the hollow block: docs/block.md).
+DTMIN = 0.05
 #: LS-DYNA *MAT_RIGID CON1 / CON2 codes of the supports (global axes).
 PROXIMAL_CON = (7, 3)
 DISTAL_CON = (4, 0)
@@ -119,8 +122,13 @@ class Test:
 
     @property
     def load_a(self) -> float:
-        """Distance (mm) along the limb from the proximal support to the load point."""
-        return float((self.point - self.proximal) @ self.limb_axis)
+        """Distance (mm) along the limb from the proximal support to where the load's
+        line (through ``point`` along ``direction``) passes the limb's axis (closest
+        approach of the two lines)."""
+        u, d = self.limb_axis, unit(self.direction)
+        w = self.proximal - self.point
+        b = float(u @ d)
+        return float((b * (d @ w) - (u @ w)) / (1.0 - b * b))
 
 
 def bending_setup(case: str, speed: float = 1.5, tissue: str = "solid", mesh: float = 30.0,
@@ -315,8 +323,7 @@ def _assemble(c, speed: float, tissue: str, end: float, parts_deck: Deck,  # noq
         imp.add(it)
     main.add_include(_include_name(parts_deck), parts_deck)
     main.add_include("impactor.k", imp)
-    main.add(ControlTermination(endtim=end))
-    main.add(ControlTimestep(tssfac=0.9))
+    _controls(main, parts_deck, end, notes)
     for name in ("GLSTAT", "MATSUM", "RCFORC", "RBDOUT", "NODOUT"):
         main.add(DatabaseAscii(name=name, dt=OUTPUT_DT))
     main.add(DatabaseBinaryD3plot(dt=end / 15.0))
@@ -333,6 +340,28 @@ def _assemble(c, speed: float, tissue: str, end: float, parts_deck: Deck,  # noq
                  impact_point=tuple(float(v) for v in test.point),
                  contact_time=GAP / float(speed), reference_node=None, span=test.span,
                  load_a=test.load_a, load_b=test.span - test.load_a, notes=notes)
+
+
+def _controls(main: Deck, parts_deck: Deck, end: float, notes: list[str]) -> None:
+    """*CONTROL_TERMINATION (ENDTIM ``end``; DTMIN :data:`DTMIN`) and *CONTROL_TIMESTEP
+    (TSSFAC 0.9, ERODE 1); a user's deck keeps its own *CONTROL_TIMESTEP (mass scaling,
+    step factor) and its termination's other fields."""
+    own_t = parts_deck.of_type(ControlTermination)
+    own_s = parts_deck.of_type(ControlTimestep)
+    if own_t:
+        t = dataclasses.replace(own_t[-1], endtim=end)
+        notes.append(f"the model's *CONTROL_TERMINATION kept but ENDTIM = {end:g} ms")
+    else:
+        t = ControlTermination(endtim=end, dtmin=DTMIN)
+    main.add(t)
+    if own_s:
+        notes.append("the model's *CONTROL_TIMESTEP kept (ERODE "
+                     f"{int(own_s[-1].erode)}, DT2MS {own_s[-1].dt2ms:g})")
+    else:
+        main.add(ControlTimestep(tssfac=0.9, erode=1))
+        notes.append(f"erosion on (ERODE 1, DTMIN {DTMIN:g}): elements crushed until their "
+                     f"step is {100 * DTMIN:g} % of the initial one (hollow walls under the "
+                     "impactor) are deleted instead of ending the run; summary.json counts them")
 
 
 def _next_id(used: list[int]) -> int:

@@ -46,6 +46,8 @@ from hollowbody.validation.landmarks import entry, field_of, load_landmarks
 
 #: Largest angle (deg) between the travel and the plane normal to the limb's axis.
 DIRECTION_TOLERANCE_DEG = 10.0
+#: Largest distance (mm) from the landmark ``point`` to the struck surface along the travel.
+POINT_TOLERANCE = 20.0
 Supports = Callable[[Any, int], list[KeywordItem]]
 
 
@@ -118,12 +120,15 @@ def user_segment(case: str, model_path: Path, landmarks: dict | None,
         raise bad("point", f"{point.tolist()} is not between the supports (at "
                   f"{test.load_a:.1f} mm along a {span:.1f} mm span)")
     surface = cyl.surface_of(m, parts)
-    f = cyl.frame(d, axis if axis is not None else np.cross(d, u))
-    try:
-        cyl.first_contact_travel(surface, point - d * 1.0e4, d, f[0], 0.5, 1.0e4)
-    except ValueError:
-        raise bad("point", f"the impactor's path along {d.round(3).tolist()} through "
-                  f"{point.tolist()} misses the contact parts {parts}") from None
+    hit = cyl.ray_hit(surface, point + d * 1.0e4, -d)  # the outermost crossing of the line
+    if hit is None:
+        raise bad("point", f"the line through {point.tolist()} along the direction "
+                  f"{d.round(3).tolist()} misses the contact parts {parts}")
+    off = float(np.linalg.norm(hit - point))
+    if off > POINT_TOLERANCE:
+        raise bad("point", f"{point.tolist()} is {off:.1f} mm from the contact parts' "
+                  f"surface along the direction (at {np.round(hit, 1).tolist()}); give the "
+                  "load point on the skin")
 
     def supports(ids: Any, lcid: int) -> list[KeywordItem]:  # noqa: ANN401 - IdAllocator
         out: list[KeywordItem] = []
