@@ -101,7 +101,8 @@ CON_CODE = {(): 0, (0,): 1, (1,): 2, (2,): 3, (0, 1): 4, (1, 2): 5, (0, 2): 6, (
 class Test:
     """What the test needs of a segment model: support points (3,) mm (where the
     supports hold it), slave parts, load point (3,) mm on the skin, travel direction
-    (3,), impactor axis (3,) or None, history nodes, notes."""
+    (3,), impactor axis (3,) or None, history node ids, and the segment deck's built
+    model (kept to avoid building it twice)."""
 
     proximal: np.ndarray
     distal: np.ndarray
@@ -110,6 +111,7 @@ class Test:
     direction: np.ndarray
     axis: np.ndarray | None = None
     history: list[int] = field(default_factory=list)
+    model: Model | None = None
 
     @property
     def span(self) -> float:
@@ -208,7 +210,7 @@ def _pedestrian_segment(case: str, tissue: str, mesh: float, hollow_options
     point = cyl.ray_hit(skin, mid, -d)
     if point is None:
         raise RuntimeError(f"no skin lateral of the mid-span point {mid.round(1)}")
-    test = Test(prox, dist, [seg.pids["skin"]], point, d)
+    test = Test(prox, dist, [seg.pids["skin"]], point, d, model=m)
     test.history = [_medial_bone_node(m, seg.pids["bone"], mid, d)]
     joints = float(np.linalg.norm(seg.distal_joint - seg.proximal_joint))
     notes += [
@@ -275,17 +277,19 @@ def _assemble(c, speed: float, tissue: str, end: float, parts_deck: Deck,  # noq
     d = unit(test.direction)
     axis = test.axis if test.axis is not None else np.cross(d, test.limb_axis)
     f = cyl.frame(d, axis)
-    m = build_model(parts_deck)
+    m = test.model if test.model is not None else build_model(parts_deck)
     skin = cyl.surface_of(m, test.contact_parts)
     radius = 0.5 * c.impactor_diameter  # of the contact face
     # length: the contact parts' extent along the axis either side of the load point
     half = float(np.abs((skin.x[np.unique(skin.seg)] - test.point) @ f[0]).max()) + 20.0
-    start = test.point - d * (radius + 20.0)
+    # start clear of the whole surface behind the load point, then find the first touch
+    behind = float(((test.point - skin.x[np.unique(skin.seg)]) @ d).max(initial=0.0))
+    start = test.point - d * (radius + behind + 10.0)
     travel, touch = cyl.first_contact_travel(skin, start, d, f[0], radius, half)
     centre = start + (travel - GAP) * d
     ids = IdAllocator(parts_deck)
-    pid = _next_id([p.pid for p in parts_deck.of_type(Part)])
-    lc = _next_id([cv.lcid for cv in parts_deck.of_type(DefineCurve)])
+    pid = _next_id(list(m.parts))
+    lc = _next_id(list(m.curves) + [cv.lcid for cv in parts_deck.of_type(DefineCurve)])
     nodes, quads = cyl.cylinder_mesh(centre, f[0], radius - 0.5 * IMPACTOR_T, 2.0 * half)
     area = float(cyl.quad_areas(nodes, quads).sum())
     rho = IMPACTOR_MASS / (area * IMPACTOR_T)

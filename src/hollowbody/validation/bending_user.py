@@ -115,7 +115,7 @@ def user_segment(case: str, model_path: Path, landmarks: dict | None,
         axis = np.asarray(field_of(e, "axis", case, where, "point"))
         if np.linalg.norm(np.cross(axis, d)) < 1e-6 * max(np.linalg.norm(axis), 1e-300):
             raise bad("axis", "must be a non-zero vector not parallel to the direction")
-    test = Test(prox, dist, parts, point, d, axis)
+    test = Test(prox, dist, parts, point, d, axis, model=m)
     if not 0.0 < test.load_a < span:
         raise bad("point", f"{point.tolist()} is not between the supports (at "
                   f"{test.load_a:.1f} mm along a {span:.1f} mm span)")

@@ -265,7 +265,7 @@ def test_user_model_gives_the_same_test(tmp_path, body) -> None:
 
 def test_user_node_supports_are_spcs(tmp_path, body) -> None:
     """Node supports: *BOUNDARY_SPC_SET on the given nodes, x, y, z proximal and the two
-    directions normal to the limb (x, y) distal."""
+    directions normal to the limb (x, y) distal; several contact parts: a part set."""
     seg = cut_segment(body, "thigh")
     x = body.mesh.coords()
     ring = [np.unique(body.parts[f"thigh_l_{e}"].conn) for e in ("proximal", "distal")]
@@ -273,9 +273,12 @@ def test_user_node_supports_are_spcs(tmp_path, body) -> None:
             for i, r in enumerate(ring)]
     deck, lm, ref, _ = _user_files(tmp_path, body, proximal_part=None, distal_part=None,
                                    proximal_nodes=ends[0].tolist(),
-                                   distal_nodes=ends[1].tolist())
+                                   distal_nodes=ends[1].tolist(),
+                                   contact_parts=[seg.pids["skin"], seg.pids["muscle"]])
     s = bending_setup("thigh-bending", model=deck, landmarks_path=lm)
     m = build_model(s.deck)
+    (c,) = m.contacts
+    assert sorted(c.slave.pids) == sorted([seg.pids["skin"], seg.pids["muscle"]])
     dofs = sorted(tuple(int(v) for v in spc.dofs[0, :3]) for spc in m.spcs)
     assert dofs == [(1, 1, 0), (1, 1, 1)]
     assert s.span == pytest.approx(np.ptp(x[np.concatenate(ends) - 1][:, 2]), abs=1e-6)
