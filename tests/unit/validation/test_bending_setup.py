@@ -396,13 +396,13 @@ def test_short_run_thigh(tmp_path, body) -> None:
       mid-span deflection, 2 U / delta^2, is 48 E I / L^3 (I of the mesh's 12-sided shell
       section) within -10 %/+15 % once the bone has deflected more than 2 mm (48 for a
       point load, 49.2 for a uniform load, 48.7 for the sine shape; dynamics add energy
-      in higher modes, shear deflection takes 3 %; measured 1.00-1.04 at 30 and 50 mm
-      meshes, either hourglass control);
+      in higher modes, shear deflection takes 3 %; measured 0.97-1.04 at 30 and 50 mm
+      meshes, either hourglass control; 1.00 here);
     - the impactor's secant stiffness in the elastic start, 2 (W - kinetic energy of the
       limb) / travel^2, lies below the bone alone's 48 E I / L^3 (the soft tissue under the
       impactor is a spring in series with the bone; the flesh's own bending stiffness,
-      E I about 4 % of the bone's with the muscle's initial modulus, is within the
-      margin; measured 0.8) and above 5 % of it (a physically soft flesh, assumed-strain
+      E I about 5 % of the bone's with the muscle's initial modulus, is within the
+      margin; measured 0.76) and above 5 % of it (a physically soft flesh, assumed-strain
       hourglass control IHQ 6, measures 8 %; a contact that does not load the limb, 0).
     """
     from hollowbody.api import run_deck
