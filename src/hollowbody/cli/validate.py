@@ -66,6 +66,8 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                         "the PATH or from LSDYNA / OPENRADIOSS_PATH)")
     p.add_argument("--dry-run", action="store_true",
                    help="write the set-up decks without running them")
+    p.add_argument("--report", action="store_true",
+                   help="rate and report the runs already in --out again, run nothing")
     p.add_argument("--out", type=Path, default=Path("validation"),
                    help="output folder (default: validation)")
     p.add_argument("--overwrite", action="store_true",
@@ -111,6 +113,8 @@ def main(args: argparse.Namespace) -> int:
 
     if args.list:
         return _list()
+    if args.report:
+        return _report_only(args)
     names = list(ORDER) if args.all else list(dict.fromkeys(args.cases))
     if not names:
         raise UserInputError("give one or more cases or --all (hollowbody validate --list "
@@ -151,6 +155,34 @@ def main(args: argparse.Namespace) -> int:
     return _run(args, cases, speeds, tissues, landmarks, corridor)
 
 
+def _report_only(args: argparse.Namespace) -> int:
+    from hollowbody.report.validation import write_report
+    from hollowbody.validation.runner import collect_records
+
+    corridor = None
+    if args.corridor is not None:
+        from hollowbody.rating.csvio import read_corridor
+
+        corridor = read_corridor(args.corridor, name=args.corridor.name)
+    records = collect_records(args.out, corridor)
+    if not records:
+        raise UserInputError(f"{args.out}: no runs of the segment tests found "
+                             "(<case>/<speed>ms/<model>/setup.json)")
+    paths = write_report(records, args.out, corridor)
+    _print(records)
+    print(f"report: {paths['markdown']} and {paths['html']}")
+    return 0 if all(r.ok for r in records) else 1
+
+
+def _print(records) -> None:  # noqa: ANN001
+    for r in records:
+        peak = (f"peak {r.peak_force:.2f} kN at {r.peak_time:.1f} ms"
+                if r.peak_force is not None else "no force")
+        rated = "; ".join(x.short() for x in r.ratings) or "not rated"
+        print(f"{r.case} {r.speed:g} m/s {r.tissue}: {r.status}, quality {r.quality or '-'}, "
+              f"{peak}; {rated}")
+
+
 def _run(args, cases, speeds, tissues, landmarks, corridor) -> int:  # noqa: ANN001
     from hollowbody.report.validation import write_report
     from hollowbody.validation.runner import run_case
@@ -170,12 +202,7 @@ def _run(args, cases, speeds, tissues, landmarks, corridor) -> int:  # noqa: ANN
         interrupted = True
         print("interrupted: reporting the runs so far")
     paths = write_report(records, args.out, corridor)
-    for r in records:
-        peak = (f"peak {r.peak_force:.2f} kN at {r.peak_time:.1f} ms"
-                if r.peak_force is not None else "no force")
-        rated = "; ".join(x.short() for x in r.ratings) or "not rated"
-        print(f"{r.case} {r.speed:g} m/s {r.tissue}: {r.status}, quality {r.quality or '-'}, "
-              f"{peak}; {rated}")
+    _print(records)
     print(f"report: {paths['markdown']} and {paths['html']}")
     if interrupted:
         return 130

@@ -134,9 +134,10 @@ def problems(records: list[RunRecord]) -> list[str]:
         if r.ok or r.status.startswith("not run"):
             continue
         where = ", ".join(f"{k} {v}" for k, v in r.where.items())
-        why = r.reason or "; ".join(r.quality_reasons)
-        if r.quality and r.quality != "ok" and r.quality_reasons:
-            why += f" (quality {r.quality}: {'; '.join(r.quality_reasons)})"
+        why = r.reason if r.status != "normal termination" else ""
+        if r.quality and r.quality != "ok":
+            why += (" " if why else "") + f"(quality {r.quality}: " \
+                + "; ".join(map(str, r.quality_reasons)) + ")"
         out.append(f"- {r.case} {r.speed:g} m/s {r.tissue}: {r.status}"
                    + (f" at {where}" if where else "") + (f": {why}" if why else ""))
     return out

@@ -74,10 +74,11 @@ class Rating:
         return asdict(self)
 
     def short(self) -> str:
-        """``CORA 0.71 ISO 0.65`` or the reason there is none."""
+        """``force vs test: CORA 0.71 ISO 0.65`` or the reason there is none."""
+        head = f"{self.quantity} vs {self.against}"
         if self.error:
-            return f"{self.against}: not rated ({self.error})"
-        txt = f"CORA {self.cora:.2f} ISO {self.iso:.2f}"
+            return f"{head}: not rated ({self.error})"
+        txt = f"{head}: CORA {self.cora:.2f} ISO {self.iso:.2f}"
         if self.inside is not None:
             txt += f", {100 * self.inside:.0f} % in corridor"
         return txt

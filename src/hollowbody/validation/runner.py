@@ -108,7 +108,8 @@ def _read_summary(rec: RunRecord) -> None:
     rec.status = d.get("status", rec.status)
     rec.reason = d.get("reason", "")
     rec.quality = d.get("quality", "")
-    rec.quality_reasons = list(d.get("quality_reasons", []))
+    rec.quality_reasons = [q.get("message", str(q)) if isinstance(q, dict) else str(q)
+                           for q in d.get("quality_reasons", [])]
     rec.where = {k[len("error_"):]: v for k, v in d.items() if k.startswith("error_")}
     rec.wall_seconds = d.get("wall_seconds")
     rec.cycles = d.get("cycles")
@@ -217,4 +218,35 @@ def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], ou
                 continue
             twin = solid.signals if (solid is not None and rec is not solid) else None
             rec.ratings = rate_run(case, speed, rec.signals, twin, corridor)
+    return records
+
+
+def collect_records(out: Path, corridor: Corridor | None = None) -> list[RunRecord]:
+    """The records of the runs already in ``out`` (every ``setup.json`` below it),
+    read and rated again: a report of runs made earlier, or interrupted."""
+    from hollowbody.validation.cases import CASES, ORDER
+
+    records: list[RunRecord] = []
+    for sj in sorted(Path(out).glob("*/*ms/*/setup.json")):
+        d = json.loads(sj.read_text())
+        s = Setup.from_json(d)
+        if s.case not in CASES:
+            continue
+        folder = sj.parent
+        for engine in ("lsdyna", "openradioss"):  # a run on an external engine
+            if (folder / engine / "summary.json").is_file():
+                folder = folder / engine
+        rec = RunRecord(s.case, s.speed, s.tissue, folder, setup=d)
+        _read_summary(rec)
+        if (folder / "rcforc.csv").is_file():
+            _read_results(rec, s)
+        records.append(rec)
+    records.sort(key=lambda r: (ORDER.index(r.case), r.speed, r.tissue != "solid"))
+    for r in records:
+        if r.signals is None:
+            continue
+        solid = next((x for x in records if x.case == r.case and x.speed == r.speed
+                      and x.tissue == "solid" and x is not r), None)
+        twin = solid.signals if solid is not None else None
+        r.ratings = rate_run(CASES[r.case], r.speed, r.signals, twin, corridor)
     return records

@@ -117,8 +117,12 @@ def read_signals(run_dir: str | Path, s: Setup, cfc: float | None = FORCE_CFC) -
     sel = rc["contact"] == s.contact_id
     if not np.any(sel):
         raise UserInputError(f"{run / 'rcforc.csv'}: no rows for contact {s.contact_id}")
-    t = rc["time [ms]"][sel]
-    fm = np.column_stack([rc[f"master_f{c} [kN]"][sel] for c in "xyz"])
+    idx = np.flatnonzero(sel)
+    # one row per time: the final state can be written twice at the end of a run
+    _, last = np.unique(rc["time [ms]"][idx][::-1], return_index=True)
+    idx = idx[::-1][last]
+    t = rc["time [ms]"][idx]
+    fm = np.column_stack([rc[f"master_f{c} [kN]"][idx] for c in "xyz"])
     force_raw = -(fm @ d)
     nd = None
     if s.impactor_node is not None:

@@ -48,6 +48,8 @@ def write_run(folder, s: Setup, force, ref_disp, t) -> None:
         rb.write([ti, s.impactor_pid, *(s.speed * ti * d), *(s.speed * d), *f_hub])
         nd.write([ti, s.reference_node, *(ref_disp(ti) * d), 0.0, 0.0, 0.0])
         nd.write([ti, 5, *(s.speed * ti * d), *(s.speed * d)])  # a node of the hub
+    ti = t[-1]  # the last state written twice, as at the end of a run
+    rc.write([ti, s.contact_id, *(force(ti) * d), *(-force(ti) * d)])
     for w in (rc, rb, nd):
         w.close()
 
