@@ -41,6 +41,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("calibrate", "validation"),
     ("report",),
     ("cli", "testing"),
+    ("__main__",),
 ]
 #: Allowed imports between nodes of the same layer.
 SIBLING_EDGES: set[tuple[str, str]] = set()

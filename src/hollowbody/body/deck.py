@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hollowbody.body import anatomy as an
 from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs
 from hollowbody.body.materials import MATERIALS
 from hollowbody.body.pedestrian import Body, part_density, rigid_bodies
@@ -66,10 +67,10 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     """(main deck with its includes, info) for ``body``; info: history node ids by
     name, joint ids by name, element counts, omitted part ids.
 
-    ``omit``: de Leva segment labels (e.g. ``("forearm_l", "hand_l")``) whose parts,
-    nodes and joints are left out of the deck (a segment test that removes a limb's
-    distal segments); ValueError for a label that is no limb segment or extremity.
-    Default: the whole body (the output does not change).
+    ``omit``: arm segments (:data:`OMITTABLE`, e.g. ``("forearm_l", "hand_l")``) whose
+    parts, nodes and joints are left out of the deck (a segment test that removes an
+    arm's distal segments; the other ids stay as in the whole body); ValueError for
+    another label. Default: the whole body (the output does not change).
     """
     mesh = body.mesh
     x = mesh.coords()
@@ -86,7 +87,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     main.add(DatabaseBinaryD3plot(dt=max(output_dt, end_time / 30.0)))
     files = {r: Deck() for r in REGIONS}
     mats = Deck()
-    _materials(mats, body, gone)
+    materials(mats, body, parts if gone else None)
     # node regions: the region of the first part that uses the node
     region_of = np.full(x.shape[0], -1)
     for p in parts:
@@ -99,7 +100,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         if sel.size:
             files[name].add_nodes(sel + 1, x[sel])
     eid = 1
-    secs = _shell_sections(body)
+    secs = shell_sections(body)
     for p in mesh.parts:
         n = p.conn.shape[0]
         ids = np.arange(eid, eid + n)
@@ -112,7 +113,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         else:
             d.add_shells(ids, p.pid, p.conn + 1)
         counts[p.kind] += n
-        mid = 1000 + p.pid if p.rigid else list(MATERIALS).index(p.material) + 1
+        mid = material_id(p)
         secid = 1 if p.kind == "solid" else secs[p.thickness]
         hg = 1 if p.kind == "solid" else 0
         if p.inertia is not None:
@@ -156,21 +157,41 @@ def omitted_parts(body: Body, omit: tuple[str, ...]) -> set[int]:
     return gone
 
 
-def _shell_sections(body: Body) -> dict[float, int]:
+def shell_sections(body: Body) -> dict[float, int]:
+    """Shell section id by thickness (mm): 10, 11, ... in ascending thickness."""
     ts = sorted({p.thickness for p in body.mesh.parts if p.kind == "shell"})
     return {t: 10 + i for i, t in enumerate(ts)}
 
 
-def _materials(d: Deck, body: Body, gone: set[int]) -> None:
-    d.add(SectionSolid(secid=1, elform=1))
-    for t, sid in _shell_sections(body).items():
-        d.add(SectionShell(secid=sid, elform=2, nip=3, t1=t, t2=t, t3=t, t4=t))
-    d.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+def material_id(part: an.PartMesh) -> int:
+    """Material id of a part: 1.. by kind (:data:`MATERIALS` order), rigid parts 1000 + pid."""
+    return 1000 + part.pid if part.rigid else list(MATERIALS).index(part.material) + 1
+
+
+def materials(d: Deck, body: Body, parts: list[an.PartMesh] | None = None) -> None:
+    """Sections, hourglass control, tissue curves and materials into ``d``: those of
+    ``parts`` only (ids as in the whole body's deck), or all (None, the pedestrian's)."""
+    every = parts is None
+    parts = body.mesh.parts if parts is None else parts
+    kinds = {p.kind for p in parts}
+    thick = {p.thickness for p in parts if p.kind == "shell"}
+    used = {p.material for p in parts if not p.rigid}
+    if every or "solid" in kinds:
+        d.add(SectionSolid(secid=1, elform=1))
+    for t, sid in shell_sections(body).items():
+        if every or t in thick:
+            d.add(SectionShell(secid=sid, elform=2, nip=3, t1=t, t2=t, t3=t, t4=t))
+    if every or "solid" in kinds:
+        d.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+    tissues = {m.tissue for k, m in MATERIALS.items() if k in used and m.law == "rubber"}
     for name, lcid in LCID_TISSUE.items():
-        ts = tissue(name)
-        d.add(DefineCurve(lcid=lcid, points=np.column_stack([ts.strain, ts.stress]).tolist(),
-                          title=f"{name}: engineering stress [GPa] vs strain"))
-    for i, m in enumerate(MATERIALS.values(), start=1):
+        if every or name in tissues:
+            ts = tissue(name)
+            d.add(DefineCurve(lcid=lcid, points=np.column_stack([ts.strain, ts.stress]).tolist(),
+                              title=f"{name}: engineering stress [GPa] vs strain"))
+    for i, (key, m) in enumerate(MATERIALS.items(), start=1):
+        if not (every or key in used):
+            continue
         if m.law == "cortical":
             d.add(MatPlasticKinematic(mid=i, ro=m.density, e=m.e, pr=m.pr, sigy=m.sigy,
                                       etan=m.etan, beta=1.0, title=m.title))
@@ -179,8 +200,8 @@ def _materials(d: Deck, body: Body, gone: set[int]) -> None:
                                       lcid=LCID_TISSUE[m.tissue], title=m.title))
         elif m.law == "elastic":
             d.add(MatElastic(mid=i, ro=m.density, e=m.e, pr=m.pr, title=m.title))
-    for p in body.mesh.parts:
-        if p.rigid and p.pid not in gone:
+    for p in parts:
+        if p.rigid:
             d.add(MatRigid(mid=1000 + p.pid, ro=part_density(body, p),
                            e=MATERIALS["rigid"].e, pr=MATERIALS["rigid"].pr,
                            title=f"rigid: {p.name}"))
@@ -239,8 +260,8 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
         xyz.append(point)
         hist[name] = nid
         nid += 1
-    for name in ("knee_l", "knee_r"):
-        hist[name] = knee_nodes[name]
+    hist["knee_l"] = knee_nodes["knee_l"]
+    hist["knee_r"] = knee_nodes["knee_r"]
     d.add_nodes(np.array(nodes), np.array(xyz))
     d.add(ConstrainedRigidBodies(pidm=pid["pelvis"], pids=pid["sacrum_part"]))
     return {"history": hist, "joints": jids}

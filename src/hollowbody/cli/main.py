@@ -18,7 +18,7 @@ from hollowbody.errors import UserInputError
 #: Subcommand modules (in hollowbody.cli), in help order. A module that is
 #: missing is skipped, so capabilities can land one by one.
 SUBCOMMANDS = ("check", "run", "block", "hollowize", "bending", "calibrate", "study", "demo",
-               "rate", "pedestrian")
+               "rate", "pedestrian", "validate")
 
 
 def build_parser() -> argparse.ArgumentParser:

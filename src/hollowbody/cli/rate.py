@@ -108,21 +108,9 @@ def _parameters(settings: list[str]) -> tuple[Any, Any]:
 
 
 def _read_corridor(path: str) -> Any:
-    from hollowbody.rating.corridors import Corridor
-    from hollowbody.rating.csvio import read_columns, read_table
+    from hollowbody.rating.csvio import read_corridor
 
-    ncol = len(read_table(path).header)
-    try:
-        if ncol == 2:
-            x, y = read_columns(path, (1, 2))
-            return Corridor.from_polygon(x, y, name="corridor")
-        if ncol >= 3:
-            x, lo, up = read_columns(path, (1, 2, 3))
-            return Corridor(x, lo, up, name="corridor")
-    except ValueError as err:
-        raise UserInputError(f"{path}: {err}") from None
-    raise UserInputError(f"{path}: a corridor needs 2 columns (polygon x, y) or 3 columns "
-                         "(x, lower, upper)")
+    return read_corridor(path)
 
 
 def _clean(obj: Any) -> Any:

@@ -173,3 +173,22 @@ def read_curve(path: str | Path, columns: Sequence[str | int] = (1, 2)) -> tuple
         raise UserInputError(f"{path}:{line}: time {t[k + 1]:g} does not increase "
                              f"(previous {t[k]:g}); time must increase strictly")
     return t, y
+
+
+def read_corridor(path: str | Path, name: str = "corridor"):  # noqa: ANN201 - Corridor
+    """A corridor from a CSV with a header row: two columns (a closed polygon x, y) or
+    three (x, lower, upper). UserInputError naming the file otherwise."""
+    from hollowbody.rating.corridors import Corridor
+
+    ncol = len(read_table(path).header)
+    try:
+        if ncol == 2:
+            x, y = read_columns(path, (1, 2))
+            return Corridor.from_polygon(x, y, name=name)
+        if ncol >= 3:
+            x, lo, up = read_columns(path, (1, 2, 3))
+            return Corridor(x, lo, up, name=name)
+    except ValueError as err:
+        raise UserInputError(f"{path}: {err}") from None
+    raise UserInputError(f"{path}: a corridor needs 2 columns (polygon x, y) or 3 columns "
+                         "(x, lower, upper)")

@@ -22,6 +22,7 @@ _LIMITS = Thresholds()
 ENERGY_RATIO_BAND = (1.0 - _LIMITS.energy_ratio_warn, 1.0 + _LIMITS.energy_ratio_warn)
 HOURGLASS_FRACTION = _LIMITS.hourglass_warn
 DT_DROP_FACTOR = _LIMITS.dt_drop_warn
+NEGLIGIBLE = _LIMITS.negligible
 
 
 @dataclass
@@ -46,7 +47,8 @@ class Monitors:
 
     def check(self, t: float, energy_ratio: float, internal: float, hourglass: float,
               part_energy: dict[int, float], part_hourglass: dict[int, tuple[float, int]],
-              dt: float, dt_elem: int, dt_part: int) -> list[dict]:
+              dt: float, dt_elem: int, dt_part: int, total: float | None = None
+              ) -> list[dict]:
         """Run all monitors at time t (ms); returns the warnings newly issued.
 
         part_energy: {pid: KE+IE+HG J}; part_hourglass: {pid: (HG J, element id
@@ -64,7 +66,9 @@ class Monitors:
             if w:
                 new.append(w)
         self._last_part_energy = dict(part_energy)
-        if internal > 0.0 and hourglass > HOURGLASS_FRACTION * internal and part_hourglass:
+        scale = max(abs(total or 0.0), internal + abs(hourglass))
+        if (internal > 0.0 and hourglass > HOURGLASS_FRACTION * internal and part_hourglass
+                and (total is None or hourglass > NEGLIGIBLE * scale)):
             pid = max(part_hourglass, key=lambda p: part_hourglass[p][0])
             eid = part_hourglass[pid][1]
             where = f"part {pid}" + (f", element {eid}" if eid >= 0 else "")

@@ -269,7 +269,7 @@ class RunOutputs:
                 elem, pid = state.dt_crit_elem
                 for w in state.monitors.check(t, e["energy_ratio"], e["internal"],
                                               e["hourglass"], part_e, part_hg, state.dt_next,
-                                              elem, pid):
+                                              elem, pid, total=e["total"]):
                     self.log(w["message"], logging.WARNING)
         if self.clocks["rcforc"].due(t) or force:
             for c in self.asm.contacts:

@@ -211,6 +211,7 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
     test.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=ids.contact,
                      heading="hub-body", ssid=ids.set, sstyp=2, msid=hub.pid, mstyp=3,
                      fs=FRICTION, fd=FRICTION, vdc=VDC, soft=1))
+    test.add(DatabaseHistoryNode(ids=[hub.centre_node]))
     notes += _hub_notes(c, hub, touch, axis_gap, hit, point, slave, d)
     if c.name in ("thorax", "abdomen"):
         arms = sorted(p.pid for k, p in body.parts.items()
@@ -242,7 +243,7 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
                  impactor_pid=hub.pid, impactor_mass=c.impactor_mass,
                  contact_id=ids.contact, direction=tuple(float(v) for v in d),
                  impact_point=tuple(float(v) for v in hit), contact_time=GAP / speed,
-                 reference_node=int(ref), notes=notes)
+                 impactor_node=hub.centre_node, reference_node=int(ref), notes=notes)
 
 
 def _set_outputs(deck: Deck, end: float) -> None:
@@ -377,7 +378,7 @@ def _user_setup(c: cases.Case, speed: float, end: float, model: Path, landmarks:
     test.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=ids.contact,
                      heading="hub-body", ssid=ids.set, sstyp=2, msid=hub.pid, mstyp=3,
                      fs=FRICTION, fd=FRICTION, vdc=VDC, soft=1))
-    test.add(DatabaseHistoryNode(ids=[ref]))
+    test.add(DatabaseHistoryNode(ids=[ref, hub.centre_node]))
     notes = [f"user model {model}: included unchanged; landmarks from {where}"]
     notes += _hub_notes(c, hub, touch, axis_gap, hit, point, slave, d)
     own_gravity = bool(user.of_type(LoadBody))
@@ -408,7 +409,7 @@ def _user_setup(c: cases.Case, speed: float, end: float, model: Path, landmarks:
                  impactor_pid=hub.pid, impactor_mass=c.impactor_mass,
                  contact_id=ids.contact, direction=tuple(float(v) for v in d),
                  impact_point=tuple(float(v) for v in hit), contact_time=GAP / speed,
-                 reference_node=int(ref), notes=notes)
+                 impactor_node=hub.centre_node, reference_node=int(ref), notes=notes)
 
 
 def _entry_of(landmarks: dict[str, Any], case: str, where: Path) -> dict[str, Any]:

@@ -288,11 +288,13 @@ CON1 = {(): 0, (0,): 1, (1,): 2, (2,): 3, (0, 1): 4, (1, 2): 5, (0, 2): 6, (0, 1
 
 @dataclass
 class Hub:
-    """The hub as placed: part id, node ids (n,), face centre (3,) mm, unit direction
-    (3,), node coordinates (n, 3) mm, held translations (global axes) and its mass kg."""
+    """The hub as placed: part id, node ids (n,), the node at the face's centre (on the
+    axis), face centre (3,) mm, unit direction (3,), node coordinates (n, 3) mm, held
+    translations (global axes) and its mass kg."""
 
     pid: int
     node_ids: np.ndarray
+    centre_node: int
     face_centre: np.ndarray
     direction: np.ndarray
     xyz: np.ndarray
@@ -337,4 +339,6 @@ def hub_keywords(deck: Deck, ids: FreeIds, face_centre: np.ndarray, direction: n
                       con1=float(CON1[held]), con2=7.0, title=title))
     deck.add(InitialVelocityGeneration(id=ids.part, styp=2, vx=float(v[0]), vy=float(v[1]),
                                        vz=float(v[2]), irigid=1))
-    return Hub(ids.part, nid, np.asarray(face_centre, float), d, xyz, held, mass)
+    (k,) = np.flatnonzero(np.linalg.norm(local, axis=1) < 1e-9)  # the O-grid's centre
+    return Hub(ids.part, nid, int(nid[k]), np.asarray(face_centre, float), d, xyz, held,
+               mass)

@@ -43,6 +43,12 @@ class Setup:
     contact_time : float
         Time [ms] at which the impactor's face reaches the body if it travels
         freely (the gap over the speed); time zero of the test curves.
+    impactor_node : int or None
+        A node of the impactor listed in *DATABASE_HISTORY_NODE (on its axis);
+        its ``nodout`` displacement is the impactor's travel. When None the
+        impactor part's ``rbdout`` rows are read instead (hollowbody's own
+        runs only: the engines' results converters write glstat, rcforc and
+        nodout).
     reference_node : int or None
         Node id (a *DATABASE_HISTORY_NODE) whose displacement along
         ``direction`` is subtracted from the impactor's to give the
@@ -66,6 +72,7 @@ class Setup:
     direction: tuple[float, float, float]
     impact_point: tuple[float, float, float]
     contact_time: float = 0.0
+    impactor_node: int | None = None
     reference_node: int | None = None
     span: float | None = None
     load_a: float | None = None

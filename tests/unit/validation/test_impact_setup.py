@@ -165,6 +165,9 @@ def test_hub_geometry_and_axis_through_the_landmark(built, body, case: str) -> N
     lm = _landmark(case, body)
     off = (lm - c_face) - ((lm - c_face) @ axis) * axis
     assert np.linalg.norm(off) < 1.0
+    k = int(np.flatnonzero(model.node_ids == s.impactor_node)[0])  # history node on the axis
+    np.testing.assert_allclose(model.node_x0[k], c_face, atol=1e-6)
+    assert k in model.output.history_nodes
     ip = np.asarray(s.impact_point)
     off_ip = (ip - c_face) - ((ip - c_face) @ axis) * axis
     assert np.linalg.norm(off_ip) < 1.0  # the impact point is on the axis too
@@ -406,3 +409,11 @@ def test_short_thorax_run_force_rises_energy_holds(tmp_path) -> None:
     v = np.column_stack([rb[f"v{c} [mm/ms]"][hub] for c in "xyz"]) @ d
     assert v[0] == pytest.approx(4.4, rel=1e-6)  # rbdout.csv: 9 digits
     assert 0.0 < v[-1] < 4.4 - 0.05  # slowed by the body
+    # the runner's signals: the face node travels with the hub; the body pushes back
+    from hollowbody.validation.signals import read_signals
+
+    sig = read_signals(tmp_path / "run", s)
+    assert sig.force_raw.max() > 0.1
+    u_rb = np.column_stack([rb[f"u{c} [mm]"][hub] for c in "xyz"]) @ d
+    assert sig.deflection.max() == pytest.approx(
+        u_rb.max() - GAP, abs=1.0)  # the spine barely moves in 3 ms
