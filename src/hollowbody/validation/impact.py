@@ -13,8 +13,9 @@ default stature and mass) or on a user's model (``model`` + its landmark entry):
 - *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE: hub = master (part), body = slave
   (part set of the parts it may touch), friction ``FRICTION``, SOFT = 1, contact
   damping ``VDC``;
-- outputs: RCFORC, RBDOUT, NODOUT (with the reference node), GLSTAT, MATSUM
-  and the pedestrian's JNTFORC / RWFORC every ``OUTPUT_DT`` ms, d3plot every
+- outputs: RCFORC, RBDOUT, NODOUT (history nodes: the reference node and the
+  node at the hub's face centre, ``Setup.impactor_node``), GLSTAT, MATSUM and
+  the pedestrian's JNTFORC / RWFORC every ``OUTPUT_DT`` ms, d3plot every
   ``D3PLOT_DT`` ms; termination at the end time; gravity and the floor of the
   pedestrian deck stay.
 
