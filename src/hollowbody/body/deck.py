@@ -51,6 +51,8 @@ from hollowbody.io.keyword import (
 from hollowbody.tissues import tissue
 
 GRAVITY = 9.81e-3  # mm/ms^2
+#: Hourglass control of the solids (IHQ, QH): assumed strain, physical stiffness.
+HOURGLASS = (6, 1.0)
 REGIONS = ("trunk", "head_neck", "leg_l", "leg_r", "arm_l", "arm_r")
 LCID_GRAVITY = 1
 LCID_TISSUE = {"muscle": 2, "fat": 3}
@@ -182,7 +184,9 @@ def materials(d: Deck, body: Body, parts: list[an.PartMesh] | None = None) -> No
         if every or t in thick:
             d.add(SectionShell(secid=sid, elform=2, nip=3, t1=t, t2=t, t3=t, t4=t))
     if every or "solid" in kinds:
-        d.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+        # assumed-strain hourglass stiffness: IHQ 4's scales with the bulk modulus and
+        # locks nearly incompressible tissue (docs/elements.md, docs/pedestrian.md)
+        d.add(Hourglass(hgid=1, ihq=HOURGLASS[0], qm=HOURGLASS[1]))
     tissues = {m.tissue for k, m in MATERIALS.items() if k in used and m.law == "rubber"}
     for name, lcid in LCID_TISSUE.items():
         if every or name in tissues:
@@ -196,7 +200,8 @@ def materials(d: Deck, body: Body, parts: list[an.PartMesh] | None = None) -> No
             d.add(MatPlasticKinematic(mid=i, ro=m.density, e=m.e, pr=m.pr, sigy=m.sigy,
                                       etan=m.etan, beta=1.0, title=m.title))
         elif m.law == "rubber":
-            d.add(MatSimplifiedRubber(mid=i, ro=m.density, km=tissue(m.tissue).bulk_modulus,
+            d.add(MatSimplifiedRubber(mid=i, ro=m.density,
+                                      km=m.bulk or tissue(m.tissue).bulk_modulus,
                                       lcid=LCID_TISSUE[m.tissue], title=m.title))
         elif m.law == "elastic":
             d.add(MatElastic(mid=i, ro=m.density, e=m.e, pr=m.pr, title=m.title))

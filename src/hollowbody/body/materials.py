@@ -8,9 +8,13 @@
 - skeletal muscle, gluteal flesh, subcutaneous fat: *MAT_SIMPLIFIED_RUBBER
   with the tissue curves and bulk moduli of :mod:`hollowbody.tissues`;
 - abdominal organs: the muscle law (a choice: no organ-specific data are
-  used), density 1.0e-6; thoracic organs: the muscle law with density
-  0.6e-6 kg/mm^3 (a choice: lungs, about 0.3e-6, and heart and great vessels,
-  about 1.05e-6, smeared);
+  used), density 1.0e-6; thoracic organs: lungs (about 0.3e-6 kg/mm^3), heart
+  and great vessels (about 1.05e-6) smeared: density 0.6e-6, the fat curve
+  (small-strain modulus about 0.17 MPa, of the order of lung parenchyma at
+  impact rates, 43-153 kPa: Pydi et al., Biomech. Model. Mechanobiol. 2023)
+  and a gas-filled bulk modulus of 0.3 MPa (air's adiabatic 0.14 MPa over an
+  air fraction of about one half): the lungs give way to the chest wall
+  instead of holding it as an incompressible core;
 - skin: *MAT_ELASTIC E 5 MPa, PR 0.45, 1.1e-6 kg/mm^3, 1 mm (as the limb);
 - intervertebral discs (the spine tube's deformable rows between rigid
   zones): *MAT_ELASTIC E 10 MPa, PR 0.45, 1.1e-6 (a choice; the spine's
@@ -29,7 +33,8 @@ from hollowbody.tissues import tissue
 @dataclass(frozen=True)
 class BodyMaterial:
     """A material: ``law`` (cortical, rubber, elastic, rigid), density kg/mm^3,
-    E and yield GPa (elastic / plastic laws), ``tissue`` name (rubber)."""
+    E and yield GPa (elastic / plastic laws), ``tissue`` name (rubber: its curve),
+    ``bulk`` GPa (rubber: the bulk modulus, 0 = the tissue's)."""
 
     law: str
     density: float
@@ -39,6 +44,7 @@ class BodyMaterial:
     etan: float = 0.0
     tissue: str = ""
     title: str = ""
+    bulk: float = 0.0
 
 
 MATERIALS = {
@@ -47,7 +53,7 @@ MATERIALS = {
                            title="skeletal muscle"),
     "fat": BodyMaterial("rubber", tissue("fat").density, tissue="fat",
                         title="subcutaneous fat"),
-    "thoracic_organs": BodyMaterial("rubber", 0.6e-6, tissue="muscle",
+    "thoracic_organs": BodyMaterial("rubber", 0.6e-6, tissue="fat", bulk=3.0e-4,
                                     title="thoracic organs"),
     "abdominal_organs": BodyMaterial("rubber", 1.0e-6, tissue="muscle",
                                      title="abdominal organs"),

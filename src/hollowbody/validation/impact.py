@@ -51,6 +51,7 @@ from hollowbody.io.keyword import (
     ConstrainedExtraNodesNode,
     Contact,
     ControlTermination,
+    ControlTimestep,
     DatabaseAscii,
     DatabaseBinaryD3plot,
     DatabaseHistoryNode,
@@ -88,6 +89,10 @@ VDC = 20.0
 #: History output interval (ms; the ratings resample at 0.1 ms) and d3plot interval.
 OUTPUT_DT = 0.1
 D3PLOT_DT = 2.0
+#: DTMIN (a fraction of the first step) with ERODE 1, as the bending set-ups: soft
+#: tissue crushed between the hub and the skeleton (the upper arm against the trunk in
+#: the shoulder case) is deleted when its step falls below it, instead of ending the run.
+DTMIN = 0.05
 #: The abdomen's aim below the xiphoid (mm; Viano 1989).
 ABDOMEN_BELOW_XYPH = 75.0
 #: The pedestrian's parts the hub may touch, by case: prefixes of ``Body.parts`` keys.
@@ -178,7 +183,9 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
     notes = [f"the subject stands (standing pedestrian, {sk.stature:g} mm, {sk.mass:g} kg, "
              f"{mesh:g} mm soft-tissue mesh; {tissue} soft tissue); the tests' subjects were "
              "seated cadavers; gravity on, the feet on the floor (rigid wall, friction 0.6), "
-             "the body otherwise free"]
+             "the body otherwise free",
+             f"erosion on (ERODE 1, DTMIN {DTMIN:g}): elements crushed until their step is "
+             f"{100 * DTMIN:g} % of the first are deleted (summary.json counts them)"]
     rb = rigid_bodies(body)
     history = dict(info["history"])
     if c.name == "abdomen":  # a reference node on the T12 spine body at the impact height
@@ -250,7 +257,9 @@ def _pedestrian_setup(c: cases.Case, speed: float, tissue: str, mesh: float, end
 def _set_outputs(deck: Deck, end: float) -> None:
     """The pedestrian main deck's termination and output intervals for the test."""
     for t in deck.of_type(ControlTermination):
-        t.endtim = end
+        t.endtim, t.dtmin = end, DTMIN
+    for ts in deck.of_type(ControlTimestep):
+        ts.erode = 1
     names = set()
     for a in deck.of_type(DatabaseAscii):
         a.dt = OUTPUT_DT

@@ -31,6 +31,9 @@ from hollowbody.validation.cases import CASES
 from hollowbody.validation.segment import cut_segment
 
 MESH = 50.0  # mm: the coarsest pedestrian mesh (fast)
+#: ms of the short run past first contact: the flesh (assumed-strain hourglass control,
+#: its physical softness) takes most of the first 10 mm of travel before the bone bends.
+RUN_MS = 16.0
 SEGMENT = {"thigh-bending": "thigh", "leg-bending": "shank"}
 
 
@@ -397,20 +400,21 @@ def test_short_run_thigh(tmp_path, body) -> None:
       section) within -10 %/+15 % once the bone has deflected more than 2 mm (48 for a
       point load, 49.2 for a uniform load, 48.7 for the sine shape; dynamics add energy
       in higher modes, shear deflection takes 3 %; measured 0.97-1.04 at 30 and 50 mm
-      meshes, either hourglass control; 1.00 here);
+      meshes, either hourglass control; 0.99 here, at 2.4 mm);
     - the impactor's secant stiffness in the elastic start, 2 (W - kinetic energy of the
       limb) / travel^2, lies below the bone alone's 48 E I / L^3 (the soft tissue under the
       impactor is a spring in series with the bone; the flesh's own bending stiffness,
       E I about 5 % of the bone's with the muscle's initial modulus, is within the
-      margin; measured 0.76) and above 5 % of it (a physically soft flesh, assumed-strain
-      hourglass control IHQ 6, measures 8 %; a contact that does not load the limb, 0).
+      margin; 0.76 with the former IHQ 4 control) and above 5 % of it (the physically soft
+      flesh of the assumed-strain control IHQ 6 measures 10 % over 24 mm of travel; a
+      contact that does not load the limb, 0).
     """
     from hollowbody.api import run_deck
     from hollowbody.body.materials import MATERIALS
     from hollowbody.io.results.history import read_history
 
     probe = bending_setup("thigh-bending", mesh=MESH)
-    s = bending_setup("thigh-bending", mesh=MESH, end_time=probe.contact_time + 6.0)
+    s = bending_setup("thigh-bending", mesh=MESH, end_time=probe.contact_time + RUN_MS)
     write_deck(s.deck, tmp_path / "deck.k", flatten=False)
     res = run_deck(tmp_path / "deck.k", tmp_path / "run", quiet=True, vtk=False)
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
