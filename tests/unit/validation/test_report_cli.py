@@ -112,3 +112,31 @@ def test_landmark_file_errors_name_the_file(tmp_path, capsys):
     assert main(["validate", "thorax", "--model", str(model), "--landmarks", str(lm),
                  "--out", str(tmp_path / "o")]) == 2
     assert "no entry for case 'thorax'" in capsys.readouterr().err
+
+
+def test_validate_runs_a_case_end_to_end(tmp_path, capsys):
+    """The command on the coarsest pedestrian, 2.5 ms of the thorax impact: the set-up is
+    written, run, read, rated and reported; then ``--report`` reads the same run again.
+    2.5 ms is past first contact (0.45 ms) so the hub force is rising (> 0.1 kN); the run
+    must end normally with the energy balanced within 2 % (a short run has no reason to
+    lose or gain energy: the contact's damping and the tissue take a few joules)."""
+    out = tmp_path / "val"
+    code = main(["validate", "thorax", "--speed", "4.4", "--tissue", "solid", "--mesh", "50",
+                 "--end-time", "2.5", "--out", str(out)])
+    printed = capsys.readouterr().out
+    run = out / "thorax" / "4.4ms" / "solid"
+    summary = json.loads((run / "summary.json").read_text())
+    assert summary["status"] == "normal termination"
+    assert abs(summary["energy_ratio"] - 1.0) < 0.02
+    assert code == (0 if summary["quality"] == "ok" else 1)
+    data = json.loads((out / "report.json").read_text())
+    assert data[0]["peak_force"] > 0.1 and data[0]["setup"]["impactor_mass"] == 23.4
+    assert "thorax 4.4 m/s solid: normal termination" in printed
+    md = (out / "report.md").read_text()
+    assert "![thorax](thorax.png)" in md and (out / "thorax.png").is_file()
+    # the same runs rated again, nothing run
+    assert main(["validate", "--report", "--out", str(out)]) == code
+    again = json.loads((out / "report.json").read_text())
+    assert again[0]["peak_force"] == data[0]["peak_force"]
+    # an earlier report is kept unless --overwrite
+    assert main(["validate", "thorax", "--dry-run", "--out", str(out)]) == 2
