@@ -35,24 +35,26 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                        description=plain(__doc__),
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("cases", nargs="*", metavar="CASE",
-                   help=f"one or more of: {', '.join(ORDER)}")
-    p.add_argument("--all", action="store_true", help="every case")
-    p.add_argument("--list", action="store_true", help="list the cases and exit")
+                   help=f"one or more of: {', '.join(ORDER)} (default: none; or --all)")
+    p.add_argument("--all", action="store_true", help="every case (default: off)")
+    p.add_argument("--list", action="store_true", help="list the cases and exit (default: off)")
     p.add_argument("--tissue", choices=("solid", "hollow", "both"), default="both",
                    help="soft tissue of the pedestrian model (default both)")
     p.add_argument("--speed", type=float, default=None,
                    help="impact speed in m/s (default: every speed of the tests)")
     p.add_argument("--model", type=Path, default=None,
-                   help="run on your own body model (keyword deck; needs --landmarks)")
+                   help="run on your own body model (keyword deck; needs --landmarks; default: the "
+                        "open pedestrian)")
     p.add_argument("--landmarks", type=Path, default=None,
-                   help="JSON file of your model's landmarks per case (docs/validation.md)")
+                   help="JSON file of your model's landmarks per case (docs/validation.md; "
+                        "default: none)")
     p.add_argument("--mesh", type=float, default=30.0,
                    help="pedestrian soft-tissue element size in mm (default 30)")
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: the length of the test data)")
     p.add_argument("--corridor", type=Path, default=None,
                    help="a corridor CSV to rate against (one case only): polygon (x, y) or "
-                        "bounds (x, lower, upper); force-time in ms, kN")
+                        "bounds (x, lower, upper); force-time in ms, kN (default: none)")
     p.add_argument("--threads", default=None,
                    help="solver threads (default: the run's default)")
     p.add_argument("--engine", choices=("hollowbody", "lsdyna", "openradioss"),
@@ -65,13 +67,14 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                    help="the external engine's executable or folder (default: found on "
                         "the PATH or from LSDYNA / OPENRADIOSS_PATH)")
     p.add_argument("--dry-run", action="store_true",
-                   help="write the set-up decks without running them")
+                   help="write the set-up decks without running them (default: off)")
     p.add_argument("--report", action="store_true",
-                   help="rate and report the runs already in --out again, run nothing")
+                   help="rate and report the runs already in --out again, run nothing "
+                        "(default: off)")
     p.add_argument("--out", type=Path, default=Path("validation"),
                    help="output folder (default: validation)")
     p.add_argument("--overwrite", action="store_true",
-                   help="replace an earlier report and case folders in --out")
+                   help="replace an earlier report and case folders in --out (default: refuse)")
     p.set_defaults(func=main)
 
 
