@@ -21,6 +21,8 @@ import json
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from hollowbody.report.index import markdown_to_html
 from hollowbody.validation.cases import CASES, ORDER
 from hollowbody.validation.ratings import LABELS, reference_data
@@ -49,6 +51,15 @@ def _legend(rec: RunRecord, quantity: str) -> str:
     return "; ".join(parts)
 
 
+def y_limits(trusted: list[float], suspects: list[float]) -> tuple[float, float] | None:
+    """Force-axis limits when a suspect run's peak (absolute) is over twice the largest
+    trusted one (test data, runs not suspect), else None (matplotlib's own)."""
+    if not trusted or not suspects or max(suspects) <= 2.0 * max(trusted):
+        return None
+    top = max(trusted)
+    return -0.15 * top, 1.3 * top
+
+
 def plot_case(records: list[RunRecord], path: str | Path, corridor=None) -> Path:  # noqa: ANN001
     """The case's figure (see the module doc); ``corridor``: a user corridor."""
     plt = _plt()
@@ -69,12 +80,25 @@ def plot_case(records: list[RunRecord], path: str | Path, corridor=None) -> Path
                 for k, (x, y) in enumerate(data.specimens):
                     ax.plot(x, y, color="0.45", lw=0.7,
                             label="specimens" if k == 0 else None)
+            trusted = [float(np.max(y)) for _, y in (data.specimens if data else [])]
+            if data is not None and data.corridor is not None:
+                trusted.append(float(np.max(data.corridor.upper)))
+            suspects: list[float] = []
             for rec in records:
                 if rec.speed != speed or rec.signals is None:
                     continue
                 x, y = rec.signals.curve(q)
+                suspect = rec.quality == "suspect"
+                if y.size:
+                    (suspects if suspect else trusted).append(float(np.max(np.abs(y))))
+                label = _legend(rec, q) + (" (run suspect)" if suspect else "")
                 ax.plot(x, y, color=COLOURS.get(rec.tissue, "k"), lw=1.8,
-                        label=_legend(rec, q))
+                        ls="--" if suspect else "-", label=label)
+            limits = y_limits(trusted, suspects)
+            if limits is not None:  # a run that blew up must not flatten the others
+                ax.set_ylim(*limits)
+                ax.annotate("suspect run off scale", xy=(0.99, 0.02), ha="right",
+                            xycoords="axes fraction", fontsize=7)
             xl, yl = LABELS[q]
             ax.set_xlabel(xl)
             ax.set_ylabel(yl)

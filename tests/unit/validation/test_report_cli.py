@@ -57,6 +57,20 @@ def test_report_has_figure_tables_problems_and_efficiency(tmp_path):
     assert data[1]["where"]["element"] == 1234 and data[0]["ratings"][0]["cora"] > 0.0
 
 
+def test_a_run_that_blew_up_does_not_flatten_the_figure(tmp_path):
+    """A suspect run 1000 times the test force is drawn dashed, off scale: the axis
+    keeps the test data and the trusted runs readable."""
+    from hollowbody.report.validation import plot_case, y_limits
+
+    recs = _records(tmp_path)
+    recs[1].signals, recs[1].quality = _signals(-2000.0), "suspect"
+    path = plot_case(recs, tmp_path / "fig.png")
+    assert path.stat().st_size > 10_000
+    assert y_limits([3.2, 2.2], [2000.0]) == pytest.approx((-0.48, 4.16))
+    assert y_limits([3.2], [6.0]) is None  # within twice: the axis shows it
+    assert y_limits([3.2], []) is None and y_limits([], [9.0]) is None
+
+
 def test_problems_and_efficiency_skip_what_is_fine(tmp_path):
     recs = _records(tmp_path)
     assert len(problems(recs)) == 1
