@@ -146,27 +146,28 @@ def main(args: argparse.Namespace) -> int:
         landmarks = load_landmarks(args.landmarks)
         for c in cases:
             entry(landmarks, c.name, args.landmarks)
-    corridor = None
-    if args.corridor is not None:
-        from hollowbody.rating.csvio import read_corridor
-
-        if not args.corridor.is_file():
-            raise UserInputError(f"{args.corridor}: no such file (--corridor)")
-        corridor = read_corridor(args.corridor, name=args.corridor.name)
+    corridor = _corridor(args)
     tissues = ("solid", "hollow") if args.tissue == "both" else (args.tissue,)
     _prepare(args.out, names, args.overwrite, args.model)
     return _run(args, cases, speeds, tissues, landmarks, corridor)
+
+
+def _corridor(args: argparse.Namespace):  # noqa: ANN202 - Corridor | None
+    """The --corridor file read, or None; UserInputError naming a missing file."""
+    if args.corridor is None:
+        return None
+    from hollowbody.rating.csvio import read_corridor
+
+    if not args.corridor.is_file():
+        raise UserInputError(f"{args.corridor}: no such file (--corridor)")
+    return read_corridor(args.corridor, name=args.corridor.name)
 
 
 def _report_only(args: argparse.Namespace) -> int:
     from hollowbody.report.validation import write_report
     from hollowbody.validation.runner import collect_records
 
-    corridor = None
-    if args.corridor is not None:
-        from hollowbody.rating.csvio import read_corridor
-
-        corridor = read_corridor(args.corridor, name=args.corridor.name)
+    corridor = _corridor(args)
     records = collect_records(args.out, corridor)
     if not records:
         raise UserInputError(f"{args.out}: no runs of the segment tests found "

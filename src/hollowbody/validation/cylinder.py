@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hollowbody.hollow.spatial import quads_to_triangles
 from hollowbody.model.model import Model, SurfaceRef
 
 #: Largest spacing (mm) of the sample points on a surface segment.
@@ -85,21 +86,14 @@ def quad_areas(nodes: np.ndarray, quads: np.ndarray) -> np.ndarray:
     return 0.5 * np.linalg.norm(np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1]), axis=1)
 
 
-def _triangles(seg: np.ndarray) -> np.ndarray:
-    """(t, 3) triangles of the segments (quads split on the 0-2 diagonal, both halves)."""
-    tri = seg[:, 3] == seg[:, 2]
-    first = seg[:, [0, 1, 2]]
-    second = seg[~tri][:, [0, 2, 3]]
-    return np.vstack([first, second])
-
-
 def ray_hit(surface: Surface, origin: np.ndarray, direction: np.ndarray) -> np.ndarray | None:
     """The farthest point (3,) mm where the ray ``origin + t direction`` (t > 0) crosses
     the surface's mid-surface (quads as two triangles each way), or None."""
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     o = np.asarray(origin, float)
     best = None
-    for tris in (_triangles(surface.seg), _triangles(surface.seg[:, [1, 2, 3, 0]])):
+    for tris in (quads_to_triangles(surface.seg),
+                 quads_to_triangles(surface.seg[:, [1, 2, 3, 0]])):
         p0, p1, p2 = (surface.x[tris[:, k]] for k in range(3))
         e1, e2 = p1 - p0, p2 - p0
         h = np.cross(d, e2)

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hollowbody.hollow.spatial import quads_to_triangles
 from hollowbody.io.keyword import (
     Contact,
     Deck,
@@ -216,11 +217,7 @@ def first_touch(tris: np.ndarray, point: np.ndarray, direction: np.ndarray,
 def segment_triangles(seg: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Triangles (t, 3, 3) mm of contact segments seg (s, 4) node indices (triangles
     have N4 == N3) at coordinates x (n, 3): each quad split into two."""
-    seg = np.asarray(seg)
-    tri = [seg[:, [0, 1, 2]]]
-    quad = seg[:, 3] != seg[:, 2]
-    tri.append(seg[quad][:, [0, 2, 3]])
-    return x[np.concatenate(tri)]
+    return x[quads_to_triangles(np.asarray(seg))]
 
 
 # ---------------------------------------------------------------------------

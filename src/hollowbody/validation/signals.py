@@ -31,6 +31,7 @@ import numpy as np
 from hollowbody.curves.cfc import cfc_filter
 from hollowbody.errors import UserInputError
 from hollowbody.io.results.history import read_history
+from hollowbody.rating.signals import resample
 from hollowbody.validation.setup import Setup, unit
 
 #: CFC class (Hz) of the force (impactor force channels, SAE J211).
@@ -91,8 +92,8 @@ def _rows(path: Path, what: str) -> dict[str, np.ndarray]:
 
 
 def _resample(t: np.ndarray, y: np.ndarray, grid: np.ndarray) -> np.ndarray:
-    order = np.argsort(t, kind="stable")
-    return np.interp(grid, t[order], y[order])
+    order = np.argsort(t, kind="stable")  # histories are in time order; be sure
+    return resample(t[order], y[order], grid)
 
 
 def _node_along(nd: dict[str, np.ndarray], node: int, d: np.ndarray, t: np.ndarray,
