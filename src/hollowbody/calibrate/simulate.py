@@ -23,10 +23,13 @@ from contextlib import redirect_stderr, redirect_stdout
 from dataclasses import asdict, dataclass, field, fields
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from hollowbody.calibrate.space import PARAMETERS
 from hollowbody.curves.force_displacement import ForceDisplacement
+
+if TYPE_CHECKING:
+    from hollowbody.engines.runner import ExternalEngine
 
 NORMAL = "normal termination"
 ERROR = "error termination"
@@ -102,6 +105,8 @@ class BlockSimulator:
     test supports it (a ``dtmin`` field of BlockConfig); hollow runs use the
     block's default (DTMIN erosion of crushed wall elements). The solver's
     console output (warnings) goes to ``console.log`` in each run folder.
+    engine: an installed OpenRadioss or LS-DYNA that runs every evaluation
+    (:class:`~hollowbody.engines.runner.ExternalEngine`; None: hollowbody's own).
     """
 
     tissue: str = "muscle"
@@ -111,14 +116,16 @@ class BlockSimulator:
     options: tuple[tuple[str, Any], ...] = ()
     vtk: bool = False
     dtmin: float | None = 0.01
+    engine: ExternalEngine | None = None
 
     @classmethod
     def make(cls, tissue: str = "muscle", mesh: float = 7.5, end_time: float | None = None,
              fixed: dict[str, float] | None = None, options: dict[str, Any] | None = None,
-             vtk: bool = False, dtmin: float | None = 0.01) -> BlockSimulator:
+             vtk: bool = False, dtmin: float | None = 0.01,
+             engine: ExternalEngine | None = None) -> BlockSimulator:
         """Build from dicts (kept as sorted tuples so the simulator is hashable)."""
         return cls(tissue, float(mesh), end_time, tuple(sorted((fixed or {}).items())),
-                   tuple(sorted((options or {}).items())), vtk, dtmin)
+                   tuple(sorted((options or {}).items())), vtk, dtmin, engine)
 
     def config(self, structure: str, speed_kmh: float, params: dict[str, float] | None = None):
         """The :class:`~hollowbody.scenarios.block.BlockConfig` of one run (ValueError if bad)."""
@@ -147,7 +154,7 @@ class BlockSimulator:
         run_dir.mkdir(parents=True, exist_ok=True)
         # the solver's console warnings go to the run folder, not the calibration's terminal
         with open(run_dir / CONSOLE_LOG, "w") as fh, redirect_stderr(fh), redirect_stdout(fh):
-            res = block_impact(cfg, run_dir, vtk=self.vtk, quiet=True)
+            res = block_impact(cfg, run_dir, vtk=self.vtk, quiet=True, engine=self.engine)
         s = res.summary
         return RunOutcome(curve=res.curve, status=s.get("status", ERROR),
                           reason=s.get("reason", ""),
@@ -166,6 +173,8 @@ class BlockSimulator:
         import tempfile
         from dataclasses import replace
 
+        if self.engine is not None:  # nothing of this process's to compile
+            return
         short = replace(self, end_time=0.05, vtk=False)
         with tempfile.TemporaryDirectory(prefix="hollowbody_warm_up_") as tmp:
             for structure in ("solid", "hollow"):
@@ -179,6 +188,8 @@ class BlockSimulator:
         d["fixed"] = dict(self.fixed)
         d["options"] = dict(self.options)
         d.pop("vtk")
+        if self.engine is None:  # descriptions (and caches) of earlier versions stay valid
+            d.pop("engine")
         from hollowbody.scenarios.block import BlockConfig
 
         if "dtmin" not in {f.name for f in fields(BlockConfig)}:

@@ -4,6 +4,13 @@ Builds the block test (docs/block.md), writes ``DIR/deck.k`` (the same
 run, repeatable in LS-DYNA or OpenRadioss), runs it and writes
 ``DIR/force_displacement.csv`` and ``DIR/force_displacement.png`` next to the
 run's histories, ParaView states and ``summary.json``.
+
+``--engine openradioss|lsdyna`` runs ``deck.k`` on an installed external engine
+instead, in ``DIR/<engine>/`` (``--np`` MPI ranks of ``--threads`` threads each,
+found through ``--engine-path``, OPENRADIOSS_PATH / LSDYNA or the PATH;
+docs/engines.md); its histories are converted and the same curve files and
+plot are written to DIR. ``--dry-run`` writes the deck and prints what would
+run.
 """
 
 from __future__ import annotations
@@ -12,6 +19,7 @@ import argparse
 from pathlib import Path
 
 from hollowbody.cli.run import add_threads_argument, with_threads
+from hollowbody.cli.run_engine import add_external_engine_arguments, external_engine
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -73,6 +81,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--mass-preserving", action=argparse.BooleanOptionalAction, default=True,
                    help="walls carry the solid block's mass; --no-mass-preserving keeps the "
                         "tissue density instead (default: mass preserving)")
+    add_external_engine_arguments(p)
+    p.add_argument("--dry-run", action="store_true",
+                   help="write the deck and print what would run, run nothing (default: run)")
     p.add_argument("--compare", action="store_true",
                    help="run solid and hollow at this speed and overlay their curves "
                         "(default: one run)")
@@ -107,11 +118,15 @@ def main(args: argparse.Namespace) -> int:
         raise UserInputError(str(exc)) from None
     from hollowbody.solver.outputs import prepare_out_dir
 
-    for folder in (out / "solid", out / "hollow") if args.compare else (out,):
+    engine = external_engine(args)
+    folders = (out / "solid", out / "hollow") if args.compare else (out,)
+    for folder in folders:
         prepare_out_dir(folder, args.overwrite)  # before the deck is written
+    if args.dry_run:
+        return _dry_run(cfg, folders, engine)
     if args.compare:
-        return _compare(cfg, out, args)
-    res = block_impact(cfg, out, vtk=args.vtk, quiet=args.quiet)
+        return _compare(cfg, out, args, engine)
+    res = block_impact(cfg, out, vtk=args.vtk, quiet=args.quiet, engine=engine)
     s = res.summary
     print(f"{s['status']}: {s['reason']}")
     print(f"  peak force {res.curve.peak_force:.3f} kN, max impactor displacement "
@@ -129,7 +144,25 @@ def main(args: argparse.Namespace) -> int:
     return exit_code(s["status"])
 
 
-def _compare(cfg, out: Path, args: argparse.Namespace) -> int:
+def _dry_run(cfg, folders: tuple[Path, ...], engine) -> int:  # noqa: ANN001
+    """Write each run's deck and print the plan of its run."""
+    from dataclasses import replace
+
+    from hollowbody.scenarios.block import write_block_deck
+
+    for folder in folders:
+        c = replace(cfg, structure=folder.name) if len(folders) > 1 else cfg
+        folder.mkdir(parents=True, exist_ok=True)
+        deck = write_block_deck(c, folder)
+        if engine is None:
+            print(f"engine: hollowbody (this program, in this process)\ndeck: {deck}\n"
+                  f"work folder: {folder}")
+        else:
+            print(engine.plan(deck, folder / engine.name, dry_run=True).describe())
+    return 0
+
+
+def _compare(cfg, out: Path, args: argparse.Namespace, engine=None) -> int:  # noqa: ANN001
     """Solid and hollow at the same speed, curves overlaid in ``out/compare.png``."""
     from dataclasses import replace
 
@@ -141,7 +174,7 @@ def _compare(cfg, out: Path, args: argparse.Namespace) -> int:
     for structure in ("solid", "hollow"):
         c = replace(cfg, structure=structure)
         results[structure] = block_impact(c, out / structure, vtk=args.vtk,
-                                          quiet=args.quiet)
+                                          quiet=args.quiet, engine=engine)
     plot([r.curve for r in results.values()], out / "compare.png",
          title=f"block test, {cfg.tissue}, {cfg.speed_kmh:g} km/h: solid vs hollow")
     for name, r in results.items():

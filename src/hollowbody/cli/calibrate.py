@@ -7,7 +7,9 @@ its force-displacement curve and the solid one (loading and unloading,
 normalised by the reference's peak force and maximum displacement; summed
 over speeds). Evaluations run in parallel on a local dask cluster (default:
 one worker per CPU), on an existing one (--scheduler) or as SLURM jobs
-(--cluster slurm; --dry-run prints the job script). Every evaluation is
+(--cluster slurm; --dry-run prints the job script), and each run on
+hollowbody's own engine or an installed OpenRadioss or LS-DYNA (--engine,
+docs/engines.md). Every evaluation is
 cached in DIR/evaluations.jsonl and the GA checkpointed after each
 generation: --resume continues a stopped calibration without running
 anything twice.
@@ -26,6 +28,7 @@ import math
 from pathlib import Path
 
 from hollowbody.cli.run import add_threads_argument, with_threads
+from hollowbody.cli.run_engine import add_external_engine_arguments, external_engine
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -74,6 +77,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="no progress display (default: progress shown)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
     add_threads_argument(p)
+    add_external_engine_arguments(p)
     p.set_defaults(func=with_threads(main))
 
 
@@ -178,7 +182,10 @@ def build_settings(args: argparse.Namespace):
         raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
     if args.cfc < 0.0:
         raise UserInputError(f"--cfc must be >= 0 (got {args.cfc:g})")
-    sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed)
+    # the engine is looked for here unless the evaluations run on a cluster's nodes
+    engine = external_engine(args, find=getattr(args, "cluster", None) is None)
+    sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed,
+                              engine=engine)
     try:  # the block's own checks (mesh divides the block, ...)
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], space.rounded(space.lower))

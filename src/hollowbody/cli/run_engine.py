@@ -16,7 +16,7 @@ from pathlib import Path
 from hollowbody.errors import UserInputError
 
 
-def _threads(value: str) -> int:
+def engine_threads(value: str | None) -> int:
     """``--threads`` of an external engine: N, or auto (1 per MPI rank)."""
     if value in (None, "auto"):
         return 1
@@ -28,6 +28,45 @@ def _threads(value: str) -> int:
     if n < 1:
         raise UserInputError(f"--threads must be at least 1 (got {n})")
     return n
+
+
+def add_external_engine_arguments(p: argparse.ArgumentParser) -> None:
+    """``--engine``, ``--np``, ``--engine-path`` of a command that runs decks it writes
+    (block, calibrate, validate); threads per MPI rank are its ``--threads``."""
+    e = p.add_argument_group("engine (docs/engines.md)")
+    e.add_argument("--engine", choices=("hollowbody", "openradioss", "lsdyna"),
+                   default="hollowbody",
+                   help="the engine that runs the decks (default: hollowbody, this program)")
+    e.add_argument("--np", type=int, default=1, metavar="N",
+                   help="MPI ranks of an external engine (default 1)")
+    e.add_argument("--engine-path", default=None, metavar="PATH",
+                   help="the external engine's executable or folder (default: found on the "
+                        "PATH or from OPENRADIOSS_PATH / LSDYNA)")
+
+
+def external_engine(args: argparse.Namespace, find: bool = False):  # -> ExternalEngine | None
+    """The external engine of ``--engine`` (None: hollowbody's own); ``find``: look for
+    it now (EngineNotFound, exit code 2, before anything is run)."""
+    if args.engine == "hollowbody":
+        for flag, given in (("--np", args.np != 1), ("--engine-path", args.engine_path)):
+            if given:
+                raise UserInputError(f"{flag} is an option of an external engine; give "
+                                     "--engine openradioss or --engine lsdyna")
+        return None
+    from hollowbody.engines.discovery import find_lsdyna, find_openradioss
+    from hollowbody.engines.runner import ExternalEngine
+
+    if args.np < 1:
+        raise UserInputError(f"--np must be at least 1 (got {args.np})")
+    engine = ExternalEngine(args.engine, np=args.np,
+                            threads=engine_threads(getattr(args, "threads", None)),
+                            path=args.engine_path)
+    if find:
+        if engine.name == "openradioss":
+            find_openradioss(engine.path)
+        else:
+            find_lsdyna(engine.path, mpp=True if engine.np > 1 else None)
+    return engine
 
 
 def _memory(value: str | None) -> tuple[int, int] | None:
@@ -76,7 +115,7 @@ def main(args: argparse.Namespace) -> int:
                                  f"supported with --engine {args.engine}")
     out = _out(args)
     np_ = int(args.np)
-    threads = _threads(args.threads)
+    threads = engine_threads(args.threads)
     memory = _memory(args.memory)
     if not args.dry_run:
         prepare_out_dir(out, args.overwrite, (args.deck,))

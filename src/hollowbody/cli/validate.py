@@ -22,6 +22,7 @@ import argparse
 import shutil
 from pathlib import Path
 
+from hollowbody.cli.run_engine import add_external_engine_arguments
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
 
@@ -57,15 +58,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                         "bounds (x, lower, upper); force-time in ms, kN (default: none)")
     p.add_argument("--threads", default=None,
                    help="solver threads (default: the run's default)")
-    p.add_argument("--engine", choices=("hollowbody", "lsdyna", "openradioss"),
-                   default="hollowbody",
-                   help="solver that runs the decks (default: hollowbody's own; see "
-                        "docs/engines.md)")
-    p.add_argument("--np", type=int, default=1,
-                   help="MPI ranks of an external engine (default 1)")
-    p.add_argument("--engine-path", default=None,
-                   help="the external engine's executable or folder (default: found on "
-                        "the PATH or from LSDYNA / OPENRADIOSS_PATH)")
+    add_external_engine_arguments(p)
     p.add_argument("--dry-run", action="store_true",
                    help="write the set-up decks without running them (default: off)")
     p.add_argument("--report", action="store_true",

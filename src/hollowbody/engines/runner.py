@@ -188,6 +188,42 @@ def plan_run(engine: str, deck: Path, out: Path, np_: int = 1, threads: int = 1,
     raise UserInputError(f"unknown engine {engine!r}: choose hollowbody, openradioss or lsdyna")
 
 
+@dataclass(frozen=True)
+class ExternalEngine:
+    """An installed engine that runs a scenario's deck instead of hollowbody's own.
+
+    name: ``openradioss`` or ``lsdyna``; np: MPI ranks; threads: threads per rank;
+    path: the engine's executable or folder (None: found on the PATH or through
+    OPENRADIOSS_PATH / LSDYNA). Plain data, so calibration workers can receive it.
+    """
+
+    name: str
+    np: int = 1
+    threads: int = 1
+    path: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.name not in ("openradioss", "lsdyna"):
+            raise UserInputError(f"unknown engine {self.name!r}: choose openradioss or lsdyna "
+                                 "(hollowbody's own engine needs no ExternalEngine)")
+        if self.np < 1 or self.threads < 1:
+            raise UserInputError(f"--np and --threads must be at least 1 (got {self.np}, "
+                                 f"{self.threads})")
+
+    def plan(self, deck: Path, out: Path, end_time: float | None = None,
+             dry_run: bool = False) -> Prepared:
+        """:func:`plan_run` of ``deck`` in ``out`` (nothing written when ``dry_run``)."""
+        return plan_run(self.name, deck, out, np_=self.np, threads=self.threads,
+                        engine_path=self.path, dry_run=dry_run, write=not dry_run,
+                        end_time=end_time)
+
+    def run(self, deck: Path, out: Path, end_time: float | None = None,
+            quiet: bool = True) -> dict:
+        """Run ``deck`` in ``out`` (EngineNotFound when it is not installed); the run's
+        ``summary.json`` dict, with ``glstat/rcforc/nodout.csv`` written next to it."""
+        return execute(self.plan(deck, out, end_time), quiet=quiet)
+
+
 def _run(cmd, env_base=None, quiet: bool = True, listing: Path | None = None) -> int:  # noqa: ANN001
     """Run one command (once, or once per file matching ``cmd.each``); returns the
     last non-zero exit code (0 when all succeeded)."""

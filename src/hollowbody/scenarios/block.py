@@ -34,6 +34,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -43,6 +44,9 @@ from hollowbody.mesh import standing_block
 from hollowbody.scenarios.geometry import cylinder_impactor_mesh, sphere_impactor_mesh
 from hollowbody.tissues import tissue
 from hollowbody.units import kmh_to_mm_per_ms
+
+if TYPE_CHECKING:
+    from hollowbody.engines.runner import ExternalEngine
 
 BLOCK_SIZE = (180.0, 180.0, 90.0)
 IMPACTOR_MASS = 5.0  # kg
@@ -352,29 +356,61 @@ class BlockResult:
 
 
 def block_impact(cfg: BlockConfig, out_dir: str | Path, vtk: bool = True,
-                 quiet: bool = True) -> BlockResult:
-    """Build, write (``deck.k``), read back and run the block test; write the curve files."""
-    from hollowbody.api import load_model, run_model
-    from hollowbody.io.keyword import write_deck
+                 quiet: bool = True, engine: ExternalEngine | None = None) -> BlockResult:
+    """Build, write (``deck.k``), read back and run the block test; write the curve files.
 
+    ``engine``: an installed OpenRadioss or LS-DYNA that runs ``deck.k`` instead of
+    hollowbody's own engine, in ``out_dir/<engine>/`` (its histories converted to
+    hollowbody's, :mod:`hollowbody.engines`); the curve files, the plot and
+    ``summary.json`` (a copy of the engine's, with the impact outcome) are written to
+    ``out_dir`` as for an embedded run. EngineNotFound when it is not installed.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    deck_path = out / "deck.k"
-    write_deck(build_block_deck(cfg), deck_path)
-    model = load_model(deck_path)
-    result = run_model(model, out, vtk=vtk, quiet=quiet, overwrite=True,  # its own folder
-                       label=f"block {cfg.structure} {cfg.tissue} {cfg.speed_kmh:g} km/h")
-    curve = fdr.extract(out, IMPACTOR_NODE0, CONTACT_ID, (0.0, 0.0, -1.0), side="master",
-                        label=f"{cfg.structure} {cfg.tissue}")
+    deck_path = write_block_deck(cfg, out)
+    label = f"block {cfg.structure} {cfg.tissue} {cfg.speed_kmh:g} km/h"
+    if engine is None:
+        from hollowbody.api import load_model, run_model
+
+        result = run_model(load_model(deck_path), out, vtk=vtk, quiet=quiet,
+                           overwrite=True, label=label)  # its own folder
+        folder, summary, status = out, result.summary, result.status
+    else:
+        folder = out / engine.name
+        summary = engine.run(deck_path, folder, quiet=quiet)
+        status = summary["status"]
+    curve = _impactor_curve(folder, f"{cfg.structure} {cfg.tissue}")
     fdr.write_csv(curve, out / "force_displacement.csv")
     outcome = impact_outcome(float(curve.max_displacement) if curve.time.size else None)
-    result.summary["impact_outcome"] = outcome
-    summary_path = out / "summary.json"
+    summary["impact_outcome"] = outcome
+    summary_path = folder / "summary.json"
     if summary_path.exists():
         s = json.loads(summary_path.read_text())
         s["impact_outcome"] = outcome
-        summary_path.write_text(json.dumps(s, indent=2))
+        text = json.dumps(s, indent=2)
+        summary_path.write_text(text)
+        if folder != out:
+            (out / "summary.json").write_text(text)
     plot_curves([curve], out / "force_displacement.png",
              title=f"block test: {cfg.structure} {tissue(cfg.tissue).name}, "
-                   f"{cfg.speed_kmh:g} km/h ({result.status})")
-    return BlockResult(curve=curve, summary=result.summary, out_dir=out, config=cfg)
+                   f"{cfg.speed_kmh:g} km/h ({status})"
+                   + (f", {engine.name}" if engine is not None else ""))
+    return BlockResult(curve=curve, summary=summary, out_dir=out, config=cfg)
+
+
+def write_block_deck(cfg: BlockConfig, out_dir: str | Path) -> Path:
+    """Write the block test's deck as ``out_dir/deck.k``; its path."""
+    from hollowbody.io.keyword import write_deck
+
+    deck_path = Path(out_dir) / "deck.k"
+    write_deck(build_block_deck(cfg), deck_path)
+    return deck_path
+
+
+def _impactor_curve(folder: Path, label: str) -> fdr.ForceDisplacement:
+    """The impactor's force-displacement from a run folder's nodout/rcforc; empty when a
+    run (an external engine's, stopped early) left either file out."""
+    if not ((folder / "nodout.csv").is_file() and (folder / "rcforc.csv").is_file()):
+        return fdr.ForceDisplacement(np.zeros(0), np.zeros(0), np.zeros(0), label)
+    return fdr.extract(folder, IMPACTOR_NODE0, CONTACT_ID, (0.0, 0.0, -1.0), side="master",
+                       label=label)
