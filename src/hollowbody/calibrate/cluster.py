@@ -1,8 +1,9 @@
-"""Calibration evaluations on a SLURM cluster through dask-jobqueue.
+"""Calibration evaluations on a SLURM or PBS cluster through dask-jobqueue.
 
-``hollowbody calibrate ... --cluster slurm`` submits ``--jobs`` SLURM jobs; each
-runs one dask worker that evaluates one candidate at a time with all the
-cores the job books (``--cores-per-job``: SLURM ``--cpus-per-task``; the
+``hollowbody calibrate ... --cluster slurm|pbs`` submits ``--jobs`` batch jobs;
+each runs one dask worker that evaluates one candidate at a time with all the
+cores the job books (``--cores-per-job``: SLURM ``--cpus-per-task``, PBS
+``-l select=1:ncpus=N:mem=M``; the
 worker has one thread, and the solver's numba threads and an external
 engine's OpenMP threads are set to the job's cores). The calibration's own
 process stays where it was started (the dask scheduler); the jobs must reach
@@ -23,15 +24,18 @@ from pathlib import Path
 from hollowbody.errors import UserInputError
 
 EXTRA = "pip install 'hollowbody[cluster]' (dask-jobqueue)"
+#: Batch systems supported (``--cluster``).
+SYSTEMS = ("slurm", "pbs")
 #: Memory booked per core when none is given.
 GB_PER_CORE = 2
 
 
 @dataclass(frozen=True)
-class SlurmSpec:
-    """The SLURM jobs of a calibration.
+class JobSpec:
+    """The batch jobs of a calibration.
 
-    queue: partition (None: the cluster's default); walltime ``HH:MM:SS`` of one
+    system: ``slurm`` or ``pbs``; queue: SLURM partition or PBS queue (None: the
+    cluster's default); walltime ``HH:MM:SS`` of one
     job; cores_per_job: cores each job books; jobs: number of jobs (dask
     workers); memory: memory per job (dask-jobqueue notation, e.g. ``8GB``;
     None: 2 GB per core); python: the interpreter the jobs run; log_directory:
@@ -45,8 +49,12 @@ class SlurmSpec:
     memory: str | None = None
     python: str = sys.executable
     log_directory: str | None = None
+    system: str = "slurm"
 
     def __post_init__(self) -> None:
+        if self.system not in SYSTEMS:
+            raise UserInputError(f"--cluster must be one of {', '.join(SYSTEMS)} "
+                                 f"(got {self.system!r})")
         if not re.fullmatch(r"\d+:[0-5]\d:[0-5]\d", self.walltime):
             raise UserInputError(f"--walltime must be HH:MM:SS (got {self.walltime!r})")
         if self.cores_per_job < 1:
@@ -65,11 +73,16 @@ class SlurmSpec:
                 "export OPENBLAS_NUM_THREADS=1", "export MKL_NUM_THREADS=1"]
 
     def kwargs(self) -> dict:
-        """Arguments of dask-jobqueue's SLURMCluster / SLURMJob: one single-threaded
-        worker per job, booking ``cores_per_job`` cores."""
-        kw = dict(cores=1, processes=1, job_cpu=self.cores_per_job, memory=self.job_memory,
-                  walltime=self.walltime, job_script_prologue=self.prologue(),
-                  python=self.python, job_name="hollowbody-calibrate")
+        """Arguments of dask-jobqueue's SLURMCluster / SLURMJob (PBSCluster / PBSJob):
+        one single-threaded worker per job, booking ``cores_per_job`` cores."""
+        kw = dict(cores=1, processes=1, memory=self.job_memory, walltime=self.walltime,
+                  job_script_prologue=self.prologue(), python=self.python,
+                  job_name="hollowbody-calibrate")
+        if self.system == "slurm":
+            kw["job_cpu"] = self.cores_per_job
+        else:  # PBS Pro / OpenPBS select statement; Torque users give --job-extra instead
+            kw["resource_spec"] = (f"select=1:ncpus={self.cores_per_job}:"
+                                   f"mem={self.job_memory}")
         if self.queue:
             kw["queue"] = self.queue
         if self.log_directory:
@@ -81,32 +94,35 @@ def _jobqueue():
     try:
         import dask_jobqueue
     except ImportError:
-        raise UserInputError(f"--cluster slurm needs dask-jobqueue: {EXTRA}") from None
+        raise UserInputError(f"--cluster needs dask-jobqueue: {EXTRA}") from None
     return dask_jobqueue
 
 
-def job_script(spec: SlurmSpec, scheduler: str = "tcp://SCHEDULER-ADDRESS:8786") -> str:
-    """The batch script each SLURM job runs (``scheduler``: the address its worker
+def job_script(spec: JobSpec, scheduler: str = "tcp://SCHEDULER-ADDRESS:8786") -> str:
+    """The batch script each job runs (``scheduler``: the address its worker
     connects to; the calibration's scheduler when it runs)."""
-    from dask_jobqueue.slurm import SLURMJob
-
     _jobqueue()
+    if spec.system == "slurm":
+        from dask_jobqueue.slurm import SLURMJob as Job
+    else:
+        from dask_jobqueue.pbs import PBSJob as Job
     made: list[Path] = []  # folders of the log directory that do not exist yet
     if spec.log_directory:
         p = Path(spec.log_directory).absolute()
         while not p.exists():
             made.append(p)
             p = p.parent
-    job = SLURMJob(scheduler=scheduler, name="hollowbody-worker", **spec.kwargs())
+    job = Job(scheduler=scheduler, name="hollowbody-worker", **spec.kwargs())
     for p in made:  # dask-jobqueue creates the log directory: a script only needs none
         if p.is_dir() and not any(p.iterdir()):
             p.rmdir()
     return job.job_script()
 
 
-def slurm_cluster(spec: SlurmSpec):  # -> dask_jobqueue.SLURMCluster
-    """A started SLURMCluster scaled to ``spec.jobs`` jobs."""
+def batch_cluster(spec: JobSpec):  # -> dask_jobqueue.SLURMCluster | PBSCluster
+    """A started SLURMCluster or PBSCluster scaled to ``spec.jobs`` jobs."""
     jq = _jobqueue()
-    cluster = jq.SLURMCluster(**spec.kwargs())
+    make = jq.SLURMCluster if spec.system == "slurm" else jq.PBSCluster
+    cluster = make(**spec.kwargs())
     cluster.scale(jobs=spec.jobs)
     return cluster

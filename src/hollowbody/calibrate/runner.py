@@ -160,16 +160,18 @@ class DaskRunner:
 
 
 def make_runner(workers: int | None = None, scheduler: str | None = None,
-                retries: int = 2, slurm: Any = None) -> SerialRunner | DaskRunner:
-    """``slurm`` given (a :class:`hollowbody.calibrate.cluster.SlurmSpec`): SLURM jobs
-    through dask-jobqueue; ``scheduler`` given: that cluster; ``workers`` == 1: this
-    process; otherwise a LocalCluster of ``workers`` processes (default: one per CPU)."""
-    if slurm is not None:
-        from hollowbody.calibrate.cluster import slurm_cluster
+                retries: int = 2, batch: Any = None) -> SerialRunner | DaskRunner:
+    """``batch`` given (a :class:`hollowbody.calibrate.cluster.JobSpec`): SLURM or PBS
+    jobs through dask-jobqueue; ``scheduler`` given: that cluster; ``workers`` == 1:
+    this process; otherwise a LocalCluster of ``workers`` processes (default: one per
+    CPU)."""
+    if batch is not None:
+        from hollowbody.calibrate.cluster import batch_cluster
 
-        return DaskRunner(retries=retries, cluster=slurm_cluster(slurm),
-                          description=f"SLURM: {slurm.jobs} job(s) of {slurm.cores_per_job} "
-                                      f"core(s){' on ' + slurm.queue if slurm.queue else ''}")
+        return DaskRunner(retries=retries, cluster=batch_cluster(batch),
+                          description=f"{batch.system.upper()}: {batch.jobs} job(s) of "
+                                      f"{batch.cores_per_job} core(s)"
+                                      f"{' on ' + batch.queue if batch.queue else ''}")
     if scheduler:
         return DaskRunner(scheduler=scheduler, retries=retries)
     n = int(workers or os.cpu_count() or 1)

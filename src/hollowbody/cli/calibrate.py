@@ -7,7 +7,7 @@ its force-displacement curve and the solid one (loading and unloading,
 normalised by the reference's peak force and maximum displacement; summed
 over speeds). Evaluations run in parallel on a local dask cluster (default:
 one worker per CPU), on an existing one (--scheduler) or as SLURM jobs
-(--cluster slurm; --dry-run prints the job script), and each run on
+(--cluster slurm|pbs; --dry-run prints the job script), and each run on
 hollowbody's own engine or an installed OpenRadioss or LS-DYNA (--engine,
 docs/engines.md). Every evaluation is
 cached in DIR/evaluations.jsonl and the GA checkpointed after each
@@ -101,38 +101,39 @@ def add_runner_options(p: argparse.ArgumentParser) -> None:
 
 
 def add_cluster_options(p: argparse.ArgumentParser) -> None:
-    """``--cluster slurm`` and its job options, ``--dry-run``."""
+    """``--cluster slurm|pbs`` and its job options, ``--dry-run``."""
     g = p.add_argument_group("cluster (optional extra: pip install 'hollowbody[cluster]')")
-    g.add_argument("--cluster", choices=("slurm",), default=None,
-                   help="run the evaluations as SLURM jobs through dask-jobqueue (default: "
-                        "a local dask cluster)")
-    g.add_argument("--queue", default=None, help="SLURM partition (default: the cluster's)")
+    g.add_argument("--cluster", choices=("slurm", "pbs"), default=None,
+                   help="run the evaluations as SLURM or PBS jobs through dask-jobqueue "
+                        "(default: a local dask cluster)")
+    g.add_argument("--queue", default=None,
+                   help="SLURM partition or PBS queue (default: the cluster's)")
     g.add_argument("--walltime", default="01:00:00", metavar="HH:MM:SS",
                    help="wall time of one job (default 01:00:00)")
     g.add_argument("--cores-per-job", type=int, default=1, metavar="N",
                    help="cores each job books; its evaluation runs on all of them (default 1)")
     g.add_argument("--jobs", type=int, default=1, metavar="N",
-                   help="SLURM jobs, each evaluating one candidate at a time (default 1)")
+                   help="batch jobs, each evaluating one candidate at a time (default 1)")
     g.add_argument("--job-memory", default=None, metavar="SIZE",
                    help="memory per job, e.g. 8GB (default: 2 GB per core)")
     g.add_argument("--dry-run", action="store_true",
                    help="with --cluster: print the job script and submit nothing (default: submit)")
 
 
-def slurm_spec(args: argparse.Namespace):
-    """The SlurmSpec of the parsed options (None without --cluster)."""
-    from hollowbody.calibrate.cluster import SlurmSpec
+def job_spec(args: argparse.Namespace):
+    """The JobSpec of the parsed options (None without --cluster)."""
+    from hollowbody.calibrate.cluster import JobSpec
 
     if getattr(args, "cluster", None) is None:
         if getattr(args, "dry_run", False):
-            raise UserInputError("--dry-run prints the job script of --cluster slurm; "
+            raise UserInputError("--dry-run prints the job script of --cluster slurm|pbs; "
                                  "give --cluster")
         return None
     if args.workers is not None or args.scheduler is not None:
         raise UserInputError("--cluster cannot be combined with --workers or --scheduler")
-    return SlurmSpec(queue=args.queue, walltime=args.walltime,
-                     cores_per_job=args.cores_per_job, jobs=args.jobs, memory=args.job_memory,
-                     log_directory=str(args.out / "slurm"))
+    return JobSpec(queue=args.queue, walltime=args.walltime,
+                   cores_per_job=args.cores_per_job, jobs=args.jobs, memory=args.job_memory,
+                   log_directory=str(args.out / args.cluster), system=args.cluster)
 
 
 def parse_fixed(items: list[str], calibrated: list[str]) -> dict[str, float]:
@@ -205,21 +206,21 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.report.calibration import write_report
 
     settings, sim = build_settings(args)
-    slurm = slurm_spec(args)
-    if slurm is not None and args.dry_run:
+    batch = job_spec(args)
+    if batch is not None and args.dry_run:
         from hollowbody.calibrate.cluster import job_script
 
-        print(f"# {slurm.jobs} SLURM job(s) of {slurm.cores_per_job} core(s), "
-              f"{slurm.job_memory}, {slurm.walltime}; each runs one dask worker that "
+        print(f"# {batch.jobs} {batch.system.upper()} job(s) of {batch.cores_per_job} "
+              f"core(s), {batch.job_memory}, {batch.walltime}; each runs one dask worker that "
               "evaluates one candidate at a time")
-        print(job_script(slurm))
+        print(job_script(batch))
         return 0
     out: Path = args.out
     if args.resume and not (out / CHECKPOINT).exists():
         raise UserInputError(f"--resume: no checkpoint in {out} (nothing to resume)")
     progress = make_progress(args.quiet)
     try:
-        with make_runner(args.workers, args.scheduler, slurm=slurm) as runner:
+        with make_runner(args.workers, args.scheduler, batch=batch) as runner:
             if not args.quiet:
                 progress.message(f"calibrating the hollow {settings.tissue} block: "
                                  f"{', '.join(settings.space.names)} at "

@@ -10,7 +10,7 @@ import shutil
 
 import pytest
 
-from hollowbody.calibrate.cluster import SlurmSpec
+from hollowbody.calibrate.cluster import JobSpec
 from hollowbody.cli.main import main
 from hollowbody.errors import UserInputError
 
@@ -21,8 +21,8 @@ jobqueue = pytest.importorskip("dask_jobqueue", reason="dask-jobqueue (extra 'cl
 def test_job_script_books_the_cores_and_runs_one_single_threaded_worker():
     from hollowbody.calibrate.cluster import job_script
 
-    spec = SlurmSpec(queue="short", walltime="02:30:00", cores_per_job=4, jobs=3,
-                     python="/opt/py/bin/python")
+    spec = JobSpec(queue="short", walltime="02:30:00", cores_per_job=4, jobs=3,
+                   python="/opt/py/bin/python")
     text = job_script(spec, scheduler="tcp://10.0.0.1:8786")
     lines = text.splitlines()
     assert lines[0] == "#!/usr/bin/env bash"
@@ -35,19 +35,45 @@ def test_job_script_books_the_cores_and_runs_one_single_threaded_worker():
                              "tcp://10.0.0.1:8786")
     assert "--nthreads 1" in worker
     # the jobs' output files go to the log folder
-    logs = job_script(SlurmSpec(log_directory="/data/cal/slurm")).splitlines()
+    logs = job_script(JobSpec(log_directory="/data/cal/slurm")).splitlines()
     assert "#SBATCH -o /data/cal/slurm/hollowbody-calibrate-%J.out" in logs
     # no queue given: no partition line
     assert not any(line.startswith("#SBATCH -p")
-                   for line in job_script(SlurmSpec()).splitlines())
+                   for line in job_script(JobSpec()).splitlines())
+
+
+def test_pbs_job_script_selects_the_cores_and_memory_of_one_chunk():
+    from hollowbody.calibrate.cluster import job_script
+
+    spec = JobSpec(system="pbs", queue="workq", walltime="03:00:00", cores_per_job=8,
+                   python="/opt/py/bin/python", log_directory="/data/cal/pbs")
+    lines = job_script(spec, scheduler="tcp://10.0.0.1:8786").splitlines()
+    for directive in ("#PBS -N hollowbody-calibrate", "#PBS -q workq",
+                      "#PBS -l select=1:ncpus=8:mem=16GB", "#PBS -l walltime=03:00:00"):
+        assert directive in lines, directive
+    assert not any(line.startswith("#SBATCH") for line in lines)
+    assert "export NUMBA_NUM_THREADS=8" in lines and "export OMP_NUM_THREADS=8" in lines
+    worker = next(line for line in lines if "dask_worker" in line)
+    assert worker.startswith("/opt/py/bin/python -m distributed.cli.dask_worker "
+                             "tcp://10.0.0.1:8786") and "--nthreads 1" in worker
+
+
+def test_cli_pbs_dry_run(tmp_path, capsys):
+    out = tmp_path / "cal"
+    assert main(["calibrate", "--tissue", "fat", "--out", str(out), "--cluster", "pbs",
+                 "--cores-per-job", "2", "--jobs", "3", "--dry-run"]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("# 3 PBS job(s) of 2 core(s), 4GB, 01:00:00")
+    assert "#PBS -l select=1:ncpus=2:mem=4GB" in text
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("kwargs, message", [
     ({"walltime": "2h"}, "HH:MM:SS"), ({"cores_per_job": 0}, "--cores-per-job"),
-    ({"jobs": 0}, "--jobs")])
+    ({"jobs": 0}, "--jobs"), ({"system": "lsf"}, "--cluster must be one of")])
 def test_bad_job_options(kwargs, message):
     with pytest.raises(UserInputError, match=message):
-        SlurmSpec(**kwargs)
+        JobSpec(**kwargs)
 
 
 def test_cli_dry_run_prints_the_script_and_runs_nothing(tmp_path, capsys):
@@ -96,8 +122,8 @@ def test_tasks_run_on_a_real_slurm(tmp_path):
         pytest.skip(why)
     from hollowbody.calibrate.runner import make_runner
 
-    spec = SlurmSpec(walltime="00:05:00", cores_per_job=1, jobs=1,
+    spec = JobSpec(walltime="00:05:00", cores_per_job=1, jobs=1,
                      log_directory=str(tmp_path / "slurm"))
-    with make_runner(slurm=spec) as runner:
+    with make_runner(batch=spec) as runner:
         results = sorted(r for _, r, err in runner.run(operator.neg, [1, 2, 3]) if err is None)
     assert results == [-3, -2, -1]
