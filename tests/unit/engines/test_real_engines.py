@@ -47,3 +47,23 @@ def test_example_runs_to_normal_termination_on_the_engine(engine, find, tmp_path
     g = read_history(out / "glstat.csv")
     assert g["time [ms]"].size > 10
     assert g["energy_ratio"][-1] == pytest.approx(1.0, abs=0.05)
+
+
+def test_block_test_on_lsdyna_writes_the_same_files():
+    """``hollowbody block --engine lsdyna``: the solid muscle block at 40 km/h ends
+    normally with its curve, plot and summary in the output folder, the impactor
+    stopped by the tissue, and the run's energy balance within 5 % (as above)."""
+    missing = _installed(find_lsdyna)
+    if missing:
+        pytest.skip(f"lsdyna is not installed here: {missing}")
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "block"
+        code = main(["block", "--engine", "lsdyna", "--out", str(out), "--no-vtk", "--quiet"])
+        s = json.loads((out / "summary.json").read_text())
+        assert code == 0, s["reason"]
+        assert s["engine"] == "lsdyna" and s["impact_outcome"] == "stopped"
+        for name in ("force_displacement.csv", "force_displacement.png", "deck.k"):
+            assert (out / name).is_file(), name
+        assert s["energy_ratio"] == pytest.approx(1.0, abs=0.05)
