@@ -9,6 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from hollowbody.solver.energy_kernels import (
+    full_step_velocity,
+    rotational_energy,
+    translational_energy,
+)
+
 
 def _half_step(state) -> float:  # noqa: ANN001 - State
     """Half the step just taken, dt^n / 2, for the full-step velocity estimates
@@ -21,13 +27,16 @@ def _half_step(state) -> float:  # noqa: ANN001 - State
     return 0.5 * state.dt if np.isfinite(state.dt) else 0.0
 
 
-def node_velocity_full_step(plan, state) -> np.ndarray:  # noqa: ANN001
+def node_velocity_full_step(plan, state, out: np.ndarray | None = None) -> np.ndarray:  # noqa: ANN001
     """v^{n+1} (n, 3) mm/ms estimated as v^{n+1/2} + dt/2 a^{n+1} (deformable nodes);
     degrees of freedom held by an SPC stay at zero (their force is the reaction), and
-    nodes on a rigid wall do not move into it (``term.full_step_velocity``)."""
-    v = state.v + _half_step(state) * state.f * state.inv_m[:, None]
-    if plan.constraints.any_fixed:
-        v[plan.constraints.fixed] = 0.0
+    nodes on a rigid wall do not move into it (``term.full_step_velocity``). ``out``:
+    an (n, 3) array to write into (default: a new one)."""
+    v = np.empty_like(state.v) if out is None else out
+    c = plan.constraints
+    fixed = c.fixed if c is not None else np.zeros((0, 3), dtype=bool)
+    full_step_velocity(state.v, state.f, state.inv_m, _half_step(state), fixed,
+                       bool(c is not None and c.any_fixed), v)
     for term in getattr(plan, "terms", ()):  # velocity constraints (rigid walls)
         stop = getattr(term, "full_step_velocity", None)
         if stop is not None:
@@ -35,15 +44,17 @@ def node_velocity_full_step(plan, state) -> np.ndarray:  # noqa: ANN001
     return v
 
 
-def kinetic_energy(plan, state) -> float:  # noqa: ANN001
-    """Kinetic energy (J) of deformable nodes (translation, rotation) and rigid bodies."""
-    v = node_velocity_full_step(plan, state)
-    d = plan.deformable
-    ke = 0.5 * float((state.node_mass[d] * (v[d] ** 2).sum(axis=1)).sum())
-    if plan.has_rotations:
-        w = state.w + _half_step(state) * state.mom * state.inv_i[:, None]
-        w[plan.constraints.fixed_rot] = 0.0  # SPC'd rotations: their moment is the reaction
-        ke += 0.5 * float((state.node_rot_inertia[d] * (w[d] ** 2).sum(axis=1)).sum())
+def kinetic_energy(plan, state, v: np.ndarray | None = None) -> float:  # noqa: ANN001
+    """Kinetic energy (J) of deformable nodes (translation, rotation) and rigid bodies;
+    ``v``: the full-step velocities of :func:`node_velocity_full_step` when the caller
+    has them."""
+    if v is None:
+        v = node_velocity_full_step(plan, state)
+    d = np.flatnonzero(plan.deformable)
+    ke = translational_energy(v, state.node_mass, d)
+    if plan.has_rotations:  # SPC'd rotations at zero: their moment is the reaction
+        ke += rotational_energy(state.w, state.mom, state.inv_i, _half_step(state),
+                                plan.constraints.fixed_rot, state.node_rot_inertia, d)
     half = _half_step(state)
     return ke + sum(rigid_kinetic_energy(b, half) for b in plan.bodies)
 
@@ -63,10 +74,11 @@ def rigid_kinetic_energy(body, half: float) -> float:  # noqa: ANN001 - RigidBod
     return 0.5 * body.mass * float(vel @ vel) + 0.5 * float(omega @ inertia @ omega)
 
 
-def energies(plan, state) -> dict[str, float]:  # noqa: ANN001
+def energies(plan, state, v: np.ndarray | None = None) -> dict[str, float]:  # noqa: ANN001
     """{kinetic, internal, hourglass, contact, external_work, total, energy_ratio,
-    mass_scaling_work, added_mass (kg)} at the State's time."""
-    ke = kinetic_energy(plan, state)
+    mass_scaling_work, added_mass (kg)} at the State's time (``v``: as for
+    :func:`kinetic_energy`)."""
+    ke = kinetic_energy(plan, state, v)
     terms = getattr(plan, "terms", ())
     ie = sum(rt.internal_energy for rt in plan.elements)
     ie += sum(getattr(t, "internal_energy", 0.0) for t in terms)

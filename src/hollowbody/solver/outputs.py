@@ -38,6 +38,7 @@ from hollowbody.io.results.history import HistoryWriter
 from hollowbody.io.results.vtk import VtkSeries, von_mises
 from hollowbody.solver.d3plot_output import make_series, state_fields
 from hollowbody.solver.energies import energies, node_velocity_full_step
+from hollowbody.solver.energy_kernels import share_energy
 from hollowbody.solver.joints import JointTerm
 from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
@@ -259,7 +260,7 @@ class RunOutputs:
         self._contact_events(state)
         t = state.t
         if self.clocks["glstat"].due(t) or force:
-            e = energies(self.asm, state)
+            e = energies(self.asm, state, self._full_step_v(state))
             self.last_energies = e
             self.glstat.write([t, state.cycle, state.dt_next, e["kinetic"], e["internal"],
                                e["hourglass"], e["contact"], e["external_work"], e["total"],
@@ -325,16 +326,32 @@ class RunOutputs:
             hg[rt.pid] = (rt.hourglass_energy, eid)
         return energy, hg
 
+    def _full_step_v(self, state) -> np.ndarray:  # noqa: ANN001
+        """The full-step velocities (n, 3) mm/ms at the State's cycle and time
+        (computed once for all the outputs due then)."""
+        key = (state.cycle, state.t)
+        if getattr(self, "_at_key", None) != key:
+            self._at_key, self._at = key, {}
+        if "v" not in self._at:
+            buf = getattr(self, "_vbuf", None)
+            if buf is None or buf.shape != state.v.shape:
+                buf = self._vbuf = np.empty_like(state.v)
+            self._at["v"] = node_velocity_full_step(self.asm, state, buf)
+        return self._at["v"]
+
     def _part_kinetic(self, state) -> dict[int, float]:  # noqa: ANN001
         """Kinetic energy (J) per part: rigid bodies exactly, other parts from their
-        share of the lumped nodal masses at full-step velocities."""
-        v = node_velocity_full_step(self.asm, state)
+        share of the lumped nodal masses at full-step velocities (once per state)."""
+        v = self._full_step_v(state)
+        if "part_ke" in self._at:
+            return dict(self._at["part_ke"])
         # a body's kinetic energy goes to its lead part (parts merged into it: 0)
         bodies = {p: b for b in self.asm.bodies for p in (b.pids or [b.pid])}
-        return {pid: (bodies[pid].kinetic_energy() if bodies[pid].pid == pid else 0.0)
-                if pid in bodies else
-                0.5 * float((share.mass * (v[share.nodes] ** 2).sum(axis=1)).sum())
-                for pid, share in self.asm.part_share.items()}
+        ke = {pid: (bodies[pid].kinetic_energy() if bodies[pid].pid == pid else 0.0)
+              if pid in bodies else share_energy(v, share.nodes, share.mass)
+              for pid, share in self.asm.part_share.items()}
+        self._at["part_ke"] = ke
+        return dict(ke)
 
     def _write_matsum(self, state) -> None:  # noqa: ANN001
         by_pid = {rt.pid: rt for rt in self.asm.elements}

@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.model.loads import RigidWallDef
+from hollowbody.solver.rigidwall_kernels import behind, moving_in
 
 #: penalty stiffness as a fraction of the stability limit of a body on all its nodes
 PENALTY_FRACTION = 0.1
@@ -84,20 +85,26 @@ class RigidWallTerm:
         return self.wall.birth <= t <= self.wall.death
 
     # -- deformable nodes: velocity constraint --------------------------------------
+    def _scratch(self) -> tuple[np.ndarray, np.ndarray]:
+        """Work rows (k,) int64 and gaps (k,) mm for the kernels (made once)."""
+        if getattr(self, "_rows", None) is None or self._rows.size != self.nodes.size:
+            self._rows = np.empty(self.nodes.size, dtype=np.int64)
+            self._gaps = np.empty(self.nodes.size)
+        return self._rows, self._gaps
+
     def constrain(self, state, dt: float) -> None:  # noqa: ANN001
         """Stop the deformable slave nodes that would pass the wall during this step."""
         self.force_constraint = np.zeros(3)
         if not self.active(state.t) or dt <= 0.0 or self.nodes.size == 0:
             return
         nodes = self.nodes
-        v = state.v[nodes]
-        gap = (state.x[nodes] + dt * v - self.tail) @ self.n
-        hit = gap < 0.0
-        if not hit.any():
+        rows, gaps = self._scratch()
+        m = behind(state.x, state.v, nodes, self.tail, self.n, dt, rows, gaps)
+        if m == 0:
             return
-        i = nodes[hit]
-        v_free = v[hit]
-        dvn = -gap[hit] / dt  # > 0: normal velocity change that lands the node on the wall
+        i = nodes[rows[:m]]
+        v_free = state.v[i]
+        dvn = -gaps[:m] / dt  # > 0: normal velocity change that lands the node on the wall
         vn = v_free @ self.n
         vt = v_free - vn[:, None] * self.n
         fric = self.wall.fric
@@ -126,13 +133,12 @@ class RigidWallTerm:
         if not self.active(state.t) or self.nodes.size == 0:
             return
         nodes = self.nodes
-        gap = (state.x[nodes] - self.tail) @ self.n
-        vn = v[nodes] @ self.n
-        on = (gap <= 1e-9) & (vn < 0.0)
-        if not on.any():
+        rows, _ = self._scratch()
+        m = moving_in(state.x, v, nodes, self.tail, self.n, 1e-9, rows)
+        if m == 0:
             return
-        i = nodes[on]
-        dvn = -vn[on]
+        i = nodes[rows[:m]]
+        dvn = -(v[i] @ self.n)
         vi = v[i] + dvn[:, None] * self.n
         fric = self.wall.fric
         if fric > 0.0:
