@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.body import anatomy as an
-from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs
+from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs, walking_tone
 from hollowbody.body.materials import MATERIALS
 from hollowbody.body.pedestrian import Body, part_density, rigid_bodies
 from hollowbody.io.keyword import (
@@ -228,7 +228,8 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     jids, knee_nodes = {}, {}
     nodes, xyz = [], []
     damp = curve(DAMPING * 1000.0, "joint damping [kN mm] vs angle rate [rad/ms]")
-    for j, spec in enumerate(joint_specs(), start=1):
+    tone = walking_tone(sk)
+    for j, spec in enumerate(joint_specs(tone), start=1):
         n1, n2 = nid, nid + 1
         nid += 2  # ids as in the whole body, also when a joint is left out
         if pid[spec.body_a] in gone or pid[spec.body_b] in gone:
@@ -269,7 +270,7 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     hist["knee_r"] = knee_nodes["knee_r"]
     d.add_nodes(np.array(nodes), np.array(xyz))
     d.add(ConstrainedRigidBodies(pidm=pid["pelvis"], pids=pid["sacrum_part"]))
-    return {"history": hist, "joints": jids}
+    return {"history": hist, "joints": jids, "tone": tone}
 
 
 def _zone_centre(body: Body, zone: str) -> np.ndarray:

@@ -132,6 +132,7 @@ def generate(out: str | Path, opts: PedestrianOptions, hollow_options=None  # no
         "penetrations": penetrations(body.mesh),
         "history_nodes": info["history"],
         "joints": info["joints"],
+        "postural_tone_Nm_per_rad": info.get("tone", {}),
     }
     if info["conversion"] is not None:
         rep = info["conversion"]
@@ -189,6 +190,9 @@ def markdown(r: dict) -> str:
               f"- initial penetrations between segments: {r['penetrations']['total']}",
               "- history nodes: " + ", ".join(f"{k} {v}" for k, v in
                                               r["history_nodes"].items())]
+    if r.get("postural_tone_Nm_per_rad"):
+        lines.append("- postural tone (flexion stiffness, N m/rad): " + ", ".join(
+            f"{k} {v:g}" for k, v in r["postural_tone_Nm_per_rad"].items()))
     if "hollow" in r:
         lines += ["", "## Hollow conversion", "", "| part | title | mass before kg | "
                   "mass after kg | shells |", "|---|---|---|---|---|"]

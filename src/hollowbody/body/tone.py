@@ -1,0 +1,123 @@
+"""Postural tone of the walking pedestrian: the flexion stiffness that holds the posture.
+
+A living pedestrian holds a walking posture by muscle activity; a passive
+joint (a few N m/rad) does not. In mid-stance the knees are flexed and the
+body weight acts across them: a leg whose hip and ankle are (nearly) pins is
+a two-force member, the load F along the hip-ankle chord, so the knee carries
+the moment F d (d: the knee's distance from the chord) and, as the knee
+flexes further, the moment grows with the geometric (buckling) stiffness
+F L1 L2 / L (thigh L1, shank L2, chord L). A knee flexion stiffness below that
+gives way under the body weight whatever its damping. The same holds for the
+head-arms-trunk over the hips (weight W at height h above the hips:
+geometric stiffness W h) and, without the geometric term (a pendulum is
+stable), for the forward-held arms at shoulders and elbows.
+
+The tone here is a flexion stiffness sized from these static moments of the
+generated posture:
+
+    k = TONE_MARGIN * (k_geo + M_g / THETA_ALLOW)
+
+so that the static flexion under gravity, M_g / (k - k_geo), is below
+THETA_ALLOW / TONE_MARGIN (1.3 degrees), and the stiffness is never below the
+passive joint's. At the default body the knees get about 390 N m/rad, the hips
+about 340 N m/rad: the order of the knee's quasi-stiffness in the stance phase
+of walking (Shamaei, Sawicki and Dollar, PLoS ONE 8(3):e59993, 2013: the knee
+moment-angle relation in weight acceptance is nearly linear; its slope follows
+from a knee extensor moment of 0.5-1 N m/kg over a flexion excursion of
+10-20 degrees, i.e. a few hundred N m/rad for a 77 kg adult). The standing
+posture needs none: its knees rest on their extension stops and the load
+line passes close to the hip, knee and ankle centres (quiet standing holds the
+knee with little muscle activity). Units: N, m, N m, N m/rad (= kN mm/rad).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hollowbody.body.skeleton import Skeleton
+
+G = 9.81  # m/s^2
+#: Allowed static flexion under gravity before the margin (rad), a choice.
+THETA_ALLOW = np.radians(2.0)
+#: Margin on the required stiffness, a choice.
+TONE_MARGIN = 1.5
+#: Segments of head, arms and trunk (HAT), carried by the hips.
+HAT = ("head", "upper_trunk", "middle_trunk", "lower_trunk")
+ARM = ("upper_arm", "forearm", "hand")
+#: Segment -> (proximal, distal) landmarks of de Leva's centre of mass line.
+_COM_LINE = {"head": ("VERT", "CERV"), "upper_trunk": ("CERV", "XYPH"),
+             "middle_trunk": ("XYPH", "OMPH"), "lower_trunk": ("OMPH", "MIDH"),
+             "upper_arm": ("SJC", "EJC"), "forearm": ("EJC", "WJC"), "hand": ("WJC", "MET3")}
+
+
+def _com(sk: Skeleton, name: str, side: str = "") -> tuple[float, np.ndarray]:
+    """(mass kg, centre of mass (3,) mm) of de Leva's segment ``name`` in the posture."""
+    seg = sk.segments[name]
+    a, b = _COM_LINE[name]
+    sfx = f"_{side}" if side else ""
+    pa, pb = sk.point(a + sfx), sk.point(b + sfx)
+    return seg.mass, pa + (pb - pa) * seg.com / seg.length
+
+
+def _lump(items: list[tuple[float, np.ndarray]]) -> tuple[float, np.ndarray]:
+    m = sum(i[0] for i in items)
+    return m, sum(i[0] * i[1] for i in items) / m
+
+
+def gravity_loads(sk: Skeleton) -> dict[str, dict[str, float]]:
+    """Static gravity moment ``M`` (N m) and geometric stiffness ``k_geo`` (N m/rad) of the
+    flexion of each hip, knee, shoulder and elbow (names as in
+    :func:`hollowbody.body.joints.joint_specs`) in the posture of ``sk``; knees also the
+    leg load ``F`` (N, along the hip-ankle chord) and the knee's distance ``d`` (mm)
+    from the chord.
+
+    Knees: both legs are two-force members from the ankles to the common hip
+    (sagittal plane): F_f e_f + F_r e_r = W z with W the weight of all but the
+    shanks and feet. Hips: the head, trunk and arms (HAT) over both hips, half
+    each. Arms: the segments distal to the joint, horizontal lever arms.
+    """
+    out: dict[str, dict[str, float]] = {}
+    seg = sk.segments
+    # hips: HAT over the hip axis
+    hat = [_com(sk, s) for s in HAT] + [_com(sk, s, side) for side in "lr" for s in ARM]
+    m_hat, c_hat = _lump(hat)
+    hip = 0.5 * (sk.point("HJC_l") + sk.point("HJC_r"))
+    for side in "lr":
+        out[f"hip_{side}"] = {"M": 0.5 * G * m_hat * abs(float(c_hat[0] - hip[0])) / 1000.0,
+                              "k_geo": 0.5 * G * m_hat * float(c_hat[2] - hip[2]) / 1000.0}
+    # knees: two-force legs meeting at the hip
+    w = G * (sk.mass - 2.0 * (seg["shank"].mass + seg["foot"].mass))
+    e = {}
+    for side in "lr":
+        d = sk.point(f"HJC_{side}") - sk.point(f"AJC_{side}")
+        e[side] = d[[0, 2]] / np.linalg.norm(d[[0, 2]])
+    # least squares: parallel legs (standing) share the load equally
+    f = np.linalg.lstsq(np.column_stack([e["l"], e["r"]]), [0.0, w], rcond=None)[0]
+    for side, fs in zip("lr", f):
+        h, k, a = (sk.point(f"{j}_{side}")[[0, 2]] for j in ("HJC", "KJC", "AJC"))
+        chord = float(np.linalg.norm(h - a))
+        u = (h - a) / chord
+        dist = abs(float((k - a)[0] * u[1] - (k - a)[1] * u[0]))
+        l1, l2 = float(np.linalg.norm(h - k)), float(np.linalg.norm(k - a))
+        out[f"knee_{side}"] = {"M": float(fs) * dist / 1000.0,
+                               "k_geo": max(0.0, float(fs)) * l1 * l2 / chord / 1000.0,
+                               "F": float(fs), "d": dist}
+    # arms: distal segments about shoulder and elbow (a hanging pendulum is stable)
+    for side in "lr":
+        for joint, centre, segs in (("shoulder", "SJC", ARM), ("elbow", "EJC", ARM[1:])):
+            c = sk.point(f"{centre}_{side}")
+            m = sum(G * mm * float(np.linalg.norm((p - c)[:2]))
+                    for mm, p in (_com(sk, s, side) for s in segs))
+            out[f"{joint}_{side}"] = {"M": m / 1000.0, "k_geo": 0.0}
+    return out
+
+
+def postural_tone(sk: Skeleton, passive: dict[str, float]) -> dict[str, float]:
+    """Flexion (theta) stiffness N m/rad per joint name that holds the posture of ``sk``:
+    TONE_MARGIN * (k_geo + M / THETA_ALLOW), at least ``passive[name]`` (the passive
+    joint's flexion stiffness)."""
+    out = {}
+    for name, ld in gravity_loads(sk).items():
+        k = TONE_MARGIN * (ld["k_geo"] + ld["M"] / THETA_ALLOW)
+        out[name] = float(max(passive[name], round(k)))
+    return out
