@@ -19,8 +19,9 @@ and of the lateral knee bending of Kajzer et al. (Stapp Car Crash Conf.
 up to a 15 degree stop); spine, neck, shoulder, elbow and wrist values are
 choices that hold the standing posture under gravity for the 150 ms of an
 impact. In the walking posture the flexion of hips, knees, shoulders and
-elbows gets a postural tone sized from the posture's gravity moments
-(:mod:`hollowbody.body.tone`) in place of the passive value. The knee is a spherical joint with stiffness, not a hinge: it
+elbows and the hips' axial rotation get a postural tone sized from the
+posture's gravity moments (:mod:`hollowbody.body.tone`) in place of the
+passive values. The knee is a spherical joint with stiffness, not a hinge: it
 bends in valgus/varus under lateral load; it does not shear (no translation).
 """
 
@@ -49,11 +50,12 @@ class JointSpec:
     stops: tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
 
-def joint_specs(tone: dict[str, float] | None = None) -> list[JointSpec]:
+def joint_specs(tone: dict[str, tuple[float, float, float]] | None = None
+                ) -> list[JointSpec]:
     """All joints, proximal to distal (spine and neck first, then each side).
 
-    ``tone``: flexion (theta) stiffness N m/rad by joint name replacing the passive
-    value (:func:`hollowbody.body.tone.postural_tone`); default none.
+    ``tone``: stiffness (phi, theta, psi) N m/rad by joint name replacing the passive
+    values (:func:`hollowbody.body.tone.postural_tone`); default none.
     """
     sp = ((-20.0, 20.0), (-20.0, 20.0), (-20.0, 20.0))
     out = [
@@ -88,15 +90,15 @@ def joint_specs(tone: dict[str, float] | None = None) -> list[JointSpec]:
         ]
     if tone:
         out = [JointSpec(j.name, j.body_a, j.body_b, j.centre, j.frame,
-                         (j.k[0], tone.get(j.name, j.k[1]), j.k[2]), j.stops) for j in out]
+                         tuple(tone.get(j.name, j.k)), j.stops) for j in out]
     return out
 
 
-def walking_tone(sk) -> dict[str, float]:  # noqa: ANN001 - Skeleton
+def walking_tone(sk) -> dict[str, tuple[float, float, float]]:  # noqa: ANN001 - Skeleton
     """The postural tone of ``sk`` if it is walking (:mod:`hollowbody.body.tone`), else
     an empty dict (the standing posture is held by the passive joints)."""
     if getattr(sk, "posture", "standing") != "walking":
         return {}
     from hollowbody.body.tone import postural_tone
 
-    return postural_tone(sk, {j.name: j.k[1] for j in joint_specs()})
+    return postural_tone(sk, {j.name: j.k for j in joint_specs()})
