@@ -15,18 +15,23 @@ also have horizontal components, backwards at the forward leg's hip and
 forwards at the rear leg's, F_x at +-w (half the hip distance): a couple
 2 F_x w about the vertical that turns the pelvis (yaw) against the hips'
 axial rotation (psi); a run with flexion tone alone showed it: the pelvis
-turned 2.2 degrees in 55 ms and the rear knee followed.
+turned 2.2 degrees in 55 ms; with the hips' axial rotation toned, the knees'
+and ankles' (20 and 30 N m/rad) let it turn on (the yaw goes down each leg
+through hip, knee and ankle in series, so each of the three gets the tone for
+a third of the allowed rotation).
 
 The tone here is a stiffness sized from these static moments of the
 generated posture:
 
     k = TONE_MARGIN * (k_geo + M_g / THETA_ALLOW)
 
-(flexion; for the hips' axial rotation M_g is half the yaw couple, k_geo 0)
+(flexion; for the legs' axial rotation M_g is half the yaw couple, k_geo 0,
+and the allowed rotation is shared by hip, knee and ankle)
 so that the static rotation under gravity, M_g / (k - k_geo), is below
 THETA_ALLOW / TONE_MARGIN (1.3 degrees), and the stiffness is never below the
 passive joint's. At the default body the knees get about 390 N m/rad, the hips
-360 N m/rad in flexion and 410 N m/rad in axial rotation: the order of the
+360 N m/rad in flexion, hips, knees and ankles 1230 N m/rad in axial
+rotation; the flexion values are of the order of the
 knee's quasi-stiffness in the stance phase of walking (Shamaei, Sawicki and
 Dollar, PLoS ONE 8(3):e59993, 2013: the knee moment-angle relation in
 weight acceptance is nearly linear; its slope follows from a knee extensor
@@ -74,10 +79,10 @@ def _lump(items: list[tuple[float, np.ndarray]]) -> tuple[float, np.ndarray]:
 def gravity_loads(sk: Skeleton) -> dict[str, dict[str, float]]:
     """Static gravity moment ``M`` (N m) and geometric stiffness ``k_geo`` (N m/rad) of the
     flexion of each hip, knee, shoulder and elbow (names as in
-    :func:`hollowbody.body.joints.joint_specs`) and of the hips' axial rotation (names
-    ``hip_l.psi``, ``hip_r.psi``) in the posture of ``sk``; knees also the leg load
-    ``F`` (N, along the hip-ankle chord) and the knee's distance ``d`` (mm) from the
-    chord.
+    :func:`hollowbody.body.joints.joint_specs`) and of the axial rotation of hips, knees
+    and ankles (names ``hip_l.psi`` etc.; ``series``: the three joints of a leg share
+    the pelvis's yaw) in the posture of ``sk``; knees also the leg load ``F`` (N, along
+    the hip-ankle chord) and the knee's distance ``d`` (mm) from the chord.
 
     Knees: both legs are two-force members from the ankles to the common hip
     (sagittal plane): F_f e_f + F_r e_r = W z with W the weight of all but the
@@ -103,8 +108,9 @@ def gravity_loads(sk: Skeleton) -> dict[str, dict[str, float]]:
     f = np.linalg.lstsq(np.column_stack([e["l"], e["r"]]), [0.0, w], rcond=None)[0]
     w_half = 0.5 * abs(float(sk.point("HJC_l")[1] - sk.point("HJC_r")[1]))
     yaw = abs(float(f[0] * e["l"][0] - f[1] * e["r"][0])) * w_half / 1000.0
-    for side in "lr":
-        out[f"hip_{side}.psi"] = {"M": 0.5 * yaw, "k_geo": 0.0}
+    for side in "lr":  # each leg's half, through hip, knee and ankle in series
+        for joint in ("hip", "knee", "ankle"):
+            out[f"{joint}_{side}.psi"] = {"M": 0.5 * yaw, "k_geo": 0.0, "series": 3.0}
     for side, fs in zip("lr", f):
         h, k, a = (sk.point(f"{j}_{side}")[[0, 2]] for j in ("HJC", "KJC", "AJC"))
         chord = float(np.linalg.norm(h - a))
@@ -131,13 +137,15 @@ def postural_tone(sk: Skeleton, passive: dict[str, tuple[float, float, float]]
                   ) -> dict[str, tuple[float, float, float]]:
     """Stiffness (phi, theta, psi) N m/rad per joint name that holds the posture of
     ``sk``: TONE_MARGIN * (k_geo + M / THETA_ALLOW) for the loaded angles (flexion
-    theta; ``name.psi``: axial rotation), at least the passive joint's
+    theta; ``name.psi``: axial rotation; THETA_ALLOW divided among joints in
+    ``series``), at least the passive joint's
     (``passive[name]``); the other angles keep the passive values."""
     out: dict[str, list[float]] = {}
     for key, ld in gravity_loads(sk).items():
         name, _, angle = key.partition(".")
         i = ANGLES[angle or "theta"]
         k = out.setdefault(name, list(passive[name]))
+        allow = THETA_ALLOW / ld.get("series", 1.0)
         k[i] = float(max(passive[name][i], round(TONE_MARGIN * (ld["k_geo"]
-                                                                  + ld["M"] / THETA_ALLOW))))
+                                                                  + ld["M"] / allow))))
     return {n: (k[0], k[1], k[2]) for n, k in out.items()}
