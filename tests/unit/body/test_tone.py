@@ -11,7 +11,7 @@ from hollowbody.body.deck import pedestrian_deck
 from hollowbody.body.joints import joint_specs, walking_tone
 from hollowbody.body.pedestrian import build_body
 from hollowbody.body.skeleton import WALKING, standing, walking
-from hollowbody.body.tone import G, THETA_ALLOW, TONE_MARGIN, gravity_loads
+from hollowbody.body.tone import THETA_ALLOW, TONE_MARGIN, G, gravity_loads
 from hollowbody.io.keyword import DefineCurve, JointStiffnessGeneralized
 
 
@@ -42,9 +42,9 @@ def test_knee_moment_is_the_leg_load_times_the_knee_offset() -> None:
         assert ld["d"] == pytest.approx(d, rel=1e-9)
         assert ld["M"] == pytest.approx(ld["F"] * d / 1000.0, rel=1e-9)
 
-        def moment(qq: float) -> float:
-            return ld["F"] * l1 * l2 * np.sin(qq) / np.sqrt(l1**2 + l2**2 + 2 * l1 * l2
-                                                            * np.cos(qq)) / 1000.0
+        def moment(qq: float, f: float = ld["F"], a: float = l1, b: float = l2) -> float:
+            return f * a * b * np.sin(qq) / np.sqrt(a**2 + b**2 + 2 * a * b
+                                                    * np.cos(qq)) / 1000.0
 
         slope = (moment(q + 1e-6) - moment(q - 1e-6)) / 2e-6
         assert ld["k_geo"] == pytest.approx(slope, rel=0.01)
