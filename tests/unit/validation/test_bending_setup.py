@@ -88,7 +88,8 @@ def test_only_the_segment_is_kept(built, body, case, tissue) -> None:
     """Parts: the segment's bone, epiphyses (with their inertia carriers), muscle and
     skin and the impactor; no joint, load, floor or SPC; the segment's mass is de
     Leva's (the pedestrian sizes each segment to it; 0.1 %: the solver's element
-    volumes differ from the generator's by 0.03 % here; the hollow conversion keeps the mass within 0.5 %)."""
+    volumes differ from the generator's by 0.03 % here; the hollow conversion keeps
+    the mass within 0.5 %)."""
     s, m = built[case, tissue]
     pids = _pids(body, case)
     carriers = {body.carriers[pids[r]] for r in ("proximal", "distal")}
