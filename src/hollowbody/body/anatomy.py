@@ -39,16 +39,23 @@ from hollowbody.body.tube import Ellipses, layered_tube, stations
 JOINT_GAP = 12.0
 #: Limb flesh (fractions of stature): ML and AP semi-axes at the proximal end,
 #: distal/proximal taper, lateral offset of the flesh centre at the proximal end,
-#: bone mid-surface radius, cortical thickness (mm, at 1,753 mm).
+#: bone mid-surface radius, cortical thickness (mm, at 1,753 mm); ``power`` p of the
+#: taper profile 1 + (taper - 1) u^p along the flesh (u = 0 proximal, 1 distal;
+#: default 1, linear): the shank's calf keeps its width and narrows to the ankle
+#: (p = 3), which puts its transverse inertia near de Leva's.
 LIMB_SHAPES = {
     "thigh": dict(a=0.051, b=0.068, taper=0.60, offset=0.003, bone_r=0.0068, bone_t=5.0),
-    "shank": dict(a=0.030, b=0.034, taper=0.60, offset=0.0, bone_r=0.0057, bone_t=4.0),
+    "shank": dict(a=0.030, b=0.034, taper=0.45, offset=0.0, bone_r=0.0057, bone_t=4.0,
+                  power=3.0),
     "upper_arm": dict(a=0.029, b=0.029, taper=0.80, offset=0.0, bone_r=0.0057, bone_t=3.5),
     "forearm": dict(a=0.027, b=0.024, taper=0.65, offset=0.0, bone_r=0.0046, bone_t=2.5),
 }
 #: Trunk sections (fractions of stature): half-width a and half-depth b at
 #: MIDH, OMPH, XYPH, CERV; spine shell radius and its posterior offset (fraction of b).
-TRUNK_SHAPE = dict(a=(0.095, 0.085, 0.092, 0.080), b=(0.058, 0.062, 0.060, 0.052),
+#: The half-width at MIDH (0.088) is below half of Winter's hip breadth (0.191 H),
+#: which is measured over the greater trochanters (the thighs' tops): with it the
+#: lower trunk's moments of inertia are de Leva's.
+TRUNK_SHAPE = dict(a=(0.088, 0.085, 0.092, 0.080), b=(0.058, 0.062, 0.060, 0.052),
                    spine_r=0.012, spine_back=0.30, fat=0.85)
 RIB_T = 2.0   # mm, smeared rib-cage shell
 BONE_T_PELVIS = 3.0
@@ -126,7 +133,7 @@ def limb(body: BodyMesh, sk: Skeleton, segment: str, side: str, mesh: float,
     zs, _ = stations([-length + JOINT_GAP, -JOINT_GAP], mesh)
     nz = zs.size - 1
     u = (zs - zs[-1]) / (zs[0] - zs[-1])  # 0 proximal .. 1 distal
-    taper = 1.0 + (s["taper"] - 1.0) * u
+    taper = 1.0 + (s["taper"] - 1.0) * u ** s.get("power", 1.0)
     a = scale * s["a"] * h * taper
     b = scale * s["b"] * h * taper
     off = lateral * s["offset"] * h * (1.0 - u)

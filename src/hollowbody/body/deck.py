@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hollowbody.body import anatomy as an
-from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs
+from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs, walking_tone
 from hollowbody.body.materials import MATERIALS
 from hollowbody.body.pedestrian import Body, part_density, rigid_bodies
 from hollowbody.io.keyword import (
@@ -64,8 +64,8 @@ def comment(lines: list[str]) -> RawKeyword:
 
 
 def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
-                    title: str = "hollowbody open pedestrian", omit: tuple[str, ...] = ()
-                    ) -> tuple[Deck, dict]:
+                    title: str = "hollowbody open pedestrian", omit: tuple[str, ...] = (),
+                    tone: bool = True) -> tuple[Deck, dict]:
     """(main deck with its includes, info) for ``body``; info: history node ids by
     name, joint ids by name, element counts, omitted part ids.
 
@@ -127,7 +127,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         else:
             d.add(Part(pid=p.pid, secid=secid, mid=mid, hgid=hg, title=p.name))
     joints = Deck()
-    info = _joints(joints, body, x.shape[0] + 1, gone)
+    info = _joints(joints, body, x.shape[0] + 1, gone, tone)
     feet = np.unique(np.concatenate([body.parts[f"foot_{s}"].conn.ravel() for s in "lr"])) + 1
     joints.add(SetNodeList(sid=1, nodes=feet, title="feet (floor contact)"))
     main.add(RigidwallPlanar(nsid=1, xh=0.0, yh=0.0, zh=1.0, fric=0.6))
@@ -212,7 +212,8 @@ def materials(d: Deck, body: Body, parts: list[an.PartMesh] | None = None) -> No
                            title=f"rigid: {p.name}"))
 
 
-def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
+def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool = True
+            ) -> dict:
     sk = body.skeleton
     pid = rigid_bodies(body)
     nid = first_node
@@ -228,7 +229,8 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     jids, knee_nodes = {}, {}
     nodes, xyz = [], []
     damp = curve(DAMPING * 1000.0, "joint damping [kN mm] vs angle rate [rad/ms]")
-    for j, spec in enumerate(joint_specs(), start=1):
+    tone = walking_tone(sk) if use_tone else {}
+    for j, spec in enumerate(joint_specs(tone), start=1):
         n1, n2 = nid, nid + 1
         nid += 2  # ids as in the whole body, also when a joint is left out
         if pid[spec.body_a] in gone or pid[spec.body_b] in gone:
@@ -269,7 +271,11 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int]) -> dict:
     hist["knee_r"] = knee_nodes["knee_r"]
     d.add_nodes(np.array(nodes), np.array(xyz))
     d.add(ConstrainedRigidBodies(pidm=pid["pelvis"], pids=pid["sacrum_part"]))
-    return {"history": hist, "joints": jids}
+    for rigid, carrier in body.carriers.items():  # inertia carriers (body/inertia_fit.py)
+        if carrier not in gone:
+            lead = pid["pelvis"] if rigid == pid["sacrum_part"] else rigid
+            d.add(ConstrainedRigidBodies(pidm=lead, pids=carrier))
+    return {"history": hist, "joints": jids, "tone": tone}
 
 
 def _zone_centre(body: Body, zone: str) -> np.ndarray:

@@ -36,7 +36,8 @@ JOINT_CENTRES = ("HJC", "KJC", "AJC", "SJC", "EJC", "WJC")
 @dataclass
 class PedestrianOptions:
     """tissue solid|hollow; posture standing|walking; height mm; mass kg; mesh mm
-    (soft-tissue element size); end_time ms; struck side l|r (walking); picture."""
+    (soft-tissue element size); end_time ms; struck side l|r (walking); picture; tone
+    (walking: the postural tone of :mod:`hollowbody.body.tone`)."""
 
     tissue: str = "solid"
     posture: str = "standing"
@@ -46,6 +47,7 @@ class PedestrianOptions:
     end_time: float = 150.0
     struck: str = "l"
     picture: bool = True
+    tone: bool = True
 
     def validate(self) -> None:
         """ValueError naming the first bad option."""
@@ -72,7 +74,8 @@ def build_deck(opts: PedestrianOptions, hollow_options=None,  # noqa: ANN001
     body = build_body(opts.height, opts.mass, opts.mesh, opts.posture, opts.struck)
     deck, info = pedestrian_deck(
         body, opts.end_time, title=f"hollowbody open pedestrian: {opts.tissue}, "
-        f"{opts.posture}, {opts.height:g} mm, {opts.mass:g} kg", omit=tuple(omit))
+        f"{opts.posture}, {opts.height:g} mm, {opts.mass:g} kg", omit=tuple(omit),
+        tone=opts.tone)
     info["body"] = body
     info["conversion"] = None
     if opts.tissue == "hollow":
@@ -132,6 +135,7 @@ def generate(out: str | Path, opts: PedestrianOptions, hollow_options=None  # no
         "penetrations": penetrations(body.mesh),
         "history_nodes": info["history"],
         "joints": info["joints"],
+        "postural_tone_Nm_per_rad": info.get("tone", {}),
     }
     if info["conversion"] is not None:
         rep = info["conversion"]
@@ -189,6 +193,10 @@ def markdown(r: dict) -> str:
               f"- initial penetrations between segments: {r['penetrations']['total']}",
               "- history nodes: " + ", ".join(f"{k} {v}" for k, v in
                                               r["history_nodes"].items())]
+    if r.get("postural_tone_Nm_per_rad"):
+        lines.append("- postural tone (stiffness phi/theta/psi, N m/rad): " + ", ".join(
+            f"{k} {'/'.join(f'{x:g}' for x in v)}"
+            for k, v in r["postural_tone_Nm_per_rad"].items()))
     if "hollow" in r:
         lines += ["", "## Hollow conversion", "", "| part | title | mass before kg | "
                   "mass after kg | shells |", "|---|---|---|---|---|"]

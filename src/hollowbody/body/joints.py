@@ -18,7 +18,10 @@ and of the lateral knee bending of Kajzer et al. (Stapp Car Crash Conf.
 1997, 973326: about 100-150 N m at 10-15 degrees of valgus, here 400 N m/rad
 up to a 15 degree stop); spine, neck, shoulder, elbow and wrist values are
 choices that hold the standing posture under gravity for the 150 ms of an
-impact. The knee is a spherical joint with stiffness, not a hinge: it
+impact. In the walking posture the flexion of hips, knees, shoulders and
+elbows and the hips' axial rotation get a postural tone sized from the
+posture's gravity moments (:mod:`hollowbody.body.tone`) in place of the
+passive values. The knee is a spherical joint with stiffness, not a hinge: it
 bends in valgus/varus under lateral load; it does not shear (no translation).
 """
 
@@ -47,8 +50,13 @@ class JointSpec:
     stops: tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
 
-def joint_specs() -> list[JointSpec]:
-    """All joints, proximal to distal (spine and neck first, then each side)."""
+def joint_specs(tone: dict[str, tuple[float, float, float]] | None = None
+                ) -> list[JointSpec]:
+    """All joints, proximal to distal (spine and neck first, then each side).
+
+    ``tone``: stiffness (phi, theta, psi) N m/rad by joint name replacing the passive
+    values (:func:`hollowbody.body.tone.postural_tone`); default none.
+    """
     sp = ((-20.0, 20.0), (-20.0, 20.0), (-20.0, 20.0))
     out = [
         JointSpec("L3-sacrum", "sacrum", "L3", "L3L4", "trunk", (150.0, 150.0, 100.0), sp),
@@ -80,4 +88,17 @@ def joint_specs() -> list[JointSpec]:
                       f"hand_{s}", (10.0, 10.0, 10.0),
                       ((-60.0, 60.0), (-60.0, 60.0), (-60.0, 60.0))),
         ]
+    if tone:
+        out = [JointSpec(j.name, j.body_a, j.body_b, j.centre, j.frame,
+                         tuple(tone.get(j.name, j.k)), j.stops) for j in out]
     return out
+
+
+def walking_tone(sk) -> dict[str, tuple[float, float, float]]:  # noqa: ANN001 - Skeleton
+    """The postural tone of ``sk`` if it is walking (:mod:`hollowbody.body.tone`), else
+    an empty dict (the standing posture is held by the passive joints)."""
+    if getattr(sk, "posture", "standing") != "walking":
+        return {}
+    from hollowbody.body.tone import postural_tone
+
+    return postural_tone(sk, {j.name: j.k for j in joint_specs()})

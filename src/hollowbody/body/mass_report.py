@@ -4,9 +4,10 @@ Per de Leva segment (sides separate): mass (kg), centre of mass (mm, global)
 and the moments of inertia about the centre of mass (kg*mm^2) about the
 segment's sagittal (x, anterior-posterior), transverse (y, medio-lateral) and
 longitudinal (z) axes, for the target (de Leva's table scaled, the centre of
-mass on the line between the model's landmarks) and the model (element
-masses lumped at element centroids plus the *PART_INERTIA of the rigid
-shells). The foot's longitudinal axis is x (heel to toe): its target is
+mass on the line between the model's landmarks) and the model as the solver
+moves it (element masses lumped at their nodes; rigid parts with *PART_INERTIA
+by their given values: :mod:`hollowbody.body.inertia_fit`). The foot's
+longitudinal axis is x (heel to toe): its target is
 (longitudinal, transverse, sagittal) about (x, y, z), and its target centre of
 mass is lifted to half the foot's height (de Leva's HEEL-TTIP line is on the
 floor here).
@@ -16,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hollowbody.body.pedestrian import Body, element_masses, part_density
+from hollowbody.body.pedestrian import Body
 
 #: Segment -> (proximal landmark, distal landmark) of de Leva's centre of mass.
 COM_LINE = {"head": ("VERT", "CERV"), "upper_trunk": ("CERV", "XYPH"),
@@ -40,31 +41,15 @@ def _frame(body: Body, label: str) -> np.ndarray:
 
 
 def segment_properties(body: Body) -> dict[str, dict]:
-    """Model mass, centre of mass and inertia (segment axes) per segment label."""
-    x = body.mesh.coords()
-    acc: dict[str, list] = {}
-    for p in body.mesh.parts:
-        if p.inertia is not None:
-            m, c, inertia = p.inertia
-            acc.setdefault(p.segment[0], []).append((np.array([m]), c[None, :], inertia))
-            continue
-        m, c = element_masses(x, p, part_density(body, p))
-        for s in np.unique(p.segment):
-            sel = p.segment == s
-            acc.setdefault(s, []).append((m[sel], c[sel], np.zeros((3, 3))))
+    """Model mass, centre of mass and inertia (segment axes) per segment label, counted as
+    the solver moves them (:func:`hollowbody.body.inertia_fit.segment_properties`)."""
+    from hollowbody.body.inertia_fit import segment_properties as props
+
     out = {}
-    for label, items in acc.items():
-        mm = np.concatenate([i[0] for i in items])
-        cc = np.vstack([i[1] for i in items])
-        total = float(mm.sum())
-        com = (mm[:, None] * cc).sum(axis=0) / total
-        d = cc - com
-        tensor = sum(i[2] for i in items) + np.einsum(
-            "e,eij->ij", mm, np.einsum("ek,ek->e", d, d)[:, None, None] * np.eye(3)
-            - d[:, :, None] * d[:, None, :])
+    for label, v in props(body).items():
         fr = _frame(body, label)
-        local = fr @ tensor @ fr.T
-        out[label] = {"mass": total, "com": com, "inertia": np.diag(local).copy()}
+        out[label] = {"mass": v["mass"], "com": v["com"],
+                      "inertia": np.diag(fr @ v["tensor"] @ fr.T).copy()}
     return out
 
 

@@ -25,12 +25,14 @@ from hollowbody.body.skeleton import Skeleton, standing, walking
 from hollowbody.body.tube import _signed_volume
 
 #: Share of each limb segment's mass carried by the flesh (bone, muscle, skin); the
-#: two epiphyses carry the rest (a choice: bone ends, joint capsules, missing flesh).
-FLESH_SHARE = 0.88
+#: two epiphyses carry the rest (bone ends, joint capsules, missing flesh). The
+#: shares put the segment's transverse moments of inertia near de Leva's (the mass
+#: at the ends weighs with the square of the half-length; docs/pedestrian.md).
+FLESH_SHARE = {"thigh": 0.88, "shank": 0.98, "upper_arm": 0.98, "forearm": 0.95}
 #: Neck share of de Leva's head-and-neck mass (VIVA+ 50M: neck 1.16 kg of 5.58 kg).
 NECK_SHARE = 1.16 / (1.16 + 4.42)
 #: Rigid parts that carry the rest of a trunk third: part key -> share.
-TRUNK_FILL = {"upper_trunk": {"spine_T1": 0.5, "spine_T8": 0.5},
+TRUNK_FILL = {"upper_trunk": {"spine_T1": 0.3, "spine_T8": 0.7},
               "middle_trunk": {"spine_T12": 0.5, "spine_L3": 0.5},
               "lower_trunk": {"pelvis": 0.7, "spine_sacrum": 0.3}}
 LIMBS = ("thigh", "shank", "upper_arm", "forearm")
@@ -41,7 +43,8 @@ ARM_CLEARANCE = 12.0
 @dataclass
 class Body:
     """The assembled body: mesh, skeleton, parts by key, rigid densities by pid
-    (kg/mm^3), and the flesh scale of each segment."""
+    (kg/mm^3), the flesh scale of each segment, and the inertia carriers merged into
+    rigid parts (rigid pid -> carrier pid; :mod:`hollowbody.body.inertia_fit`)."""
 
     mesh: an.BodyMesh
     skeleton: Skeleton
@@ -49,6 +52,7 @@ class Body:
     rigid_density: dict[int, float] = field(default_factory=dict)
     scales: dict[str, float] = field(default_factory=dict)
     mesh_size: float = 25.0
+    carriers: dict[int, int] = field(default_factory=dict)
 
 
 def element_masses(x: np.ndarray, part: an.PartMesh, density: float
@@ -89,8 +93,8 @@ def segment_masses(body: Body, rigid: bool = True) -> dict[str, float]:
 
 def build_body(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS,
                mesh: float = 25.0, posture: str = "standing", struck: str = "l",
-               scales: dict[str, float] | None = None, skeleton: Skeleton | None = None
-               ) -> Body:
+               scales: dict[str, float] | None = None, skeleton: Skeleton | None = None,
+               fit: bool = True) -> Body:
     """The body of ``stature`` mm and ``mass`` kg, soft-tissue element size ``mesh`` mm.
 
     ``posture``: ``standing`` or ``walking`` (struck side ``struck`` forward);
@@ -98,7 +102,10 @@ def build_body(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS,
     :data:`FLESH_SHARE` of the segment mass). The shoulder joint centres are
     placed where the hanging arms clear the trunk and thighs by
     :data:`ARM_CLEARANCE` (at least Winter's half shoulder width);
-    ``skeleton`` overrides the posture. Raises ValueError for a non-positive
+    ``skeleton`` overrides the posture; ``fit``: the fill masses of the trunk thirds'
+    and limb segments' rigid parts move into inertia carriers that fit the segment
+    inertias to de Leva's (:func:`hollowbody.body.inertia_fit.fit_inertias`; False: the
+    fill stays on the rigid shells). Raises ValueError for a non-positive
     size, stature or mass or an unknown posture.
     """
     if not mesh > 0.0:
@@ -127,15 +134,23 @@ def build_body(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS,
     _extremities(body, sk, parts, mesh)
     out = Body(body, sk, parts, {}, dict(scales), mesh)
     _fill_rigid(out)
+    if fit:
+        from hollowbody.body.inertia_fit import fit_inertias
+        from hollowbody.body.mass_report import _frame, targets
+
+        t = targets(out)
+        labels = [k for k in t if not k.startswith(("head", "hand", "foot"))]
+        fit_inertias(out, {k: t[k]["inertia"] for k in labels},
+                     {k: _frame(out, k) for k in labels})
     return out
 
 
 def flesh_scales(stature: float, mass: float, mesh: float, sk: Skeleton) -> dict[str, float]:
     """Flesh scale per limb segment so the flesh carries :data:`FLESH_SHARE` of its mass."""
     first = build_body(stature, mass, mesh, scales={s: 1.0 for s in LIMBS + ("trunk",)},
-                       skeleton=sk)
+                       skeleton=sk, fit=False)
     flesh = segment_masses(first, rigid=False)
-    scales = {s: float(np.sqrt(sk.segments[s].mass * FLESH_SHARE / flesh[f"{s}_l"]))
+    scales = {s: float(np.sqrt(sk.segments[s].mass * FLESH_SHARE[s] / flesh[f"{s}_l"]))
               for s in LIMBS}
     scales["trunk"] = 1.0
     return scales

@@ -68,7 +68,8 @@ class Skeleton:
     """Landmarks and joint centres (name -> (3,) mm) of one posture; sides suffixed
     ``_l`` (y > 0) and ``_r``; frames: segment name -> (3, 3) rows = local x, y, z
     (z from the distal to the proximal joint, x anterior); ``segments``: de Leva's
-    scaled segments; chain_scale: the factor on the vertical chain's lengths."""
+    scaled segments; chain_scale: the factor on the vertical chain's lengths;
+    posture: ``standing`` or ``walking``."""
 
     stature: float
     mass: float
@@ -78,6 +79,7 @@ class Skeleton:
     chain_scale: float
     shoulder_half_width: float = 0.0
     notes: list[str] = field(default_factory=list)
+    posture: str = "standing"
 
     def point(self, name: str) -> np.ndarray:
         """The landmark ``name`` (KeyError naming the known ones otherwise)."""
@@ -230,6 +232,7 @@ def walking(stature: float = DEFAULT_STATURE, mass: float = DEFAULT_MASS, struck
         raise ValueError(f"struck side must be 'l' or 'r' (got {struck!r})")
     a = dict(WALKING, **(angles or {}))
     sk = standing(stature, mass, shoulder_half_width)
+    sk.posture = "walking"
     y = np.array([0.0, 1.0, 0.0])
     other = "r" if struck == "l" else "l"
     lt, ls = sk.length("thigh"), sk.length("shank")

@@ -34,6 +34,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--struck", choices=("l", "r"), default="l",
                    help="struck side for the walking posture: its leg is forward (default l, "
                         "the body's left)")
+    p.add_argument("--tone", action=argparse.BooleanOptionalAction, default=True,
+                   help="walking: postural tone of hip, knee, shoulder and elbow flexion "
+                        "that holds the posture under gravity (default: yes; --no-tone: "
+                        "passive joints, as a released cadaver)")
     p.add_argument("--height", type=float, default=DEFAULT_STATURE,
                    help=f"stature in mm (default {DEFAULT_STATURE:g})")
     p.add_argument("--mass", type=float, default=DEFAULT_MASS,
@@ -55,7 +59,7 @@ def main(args: argparse.Namespace) -> int:
 
     opts = PedestrianOptions(tissue=args.tissue, posture=args.posture, height=args.height,
                              mass=args.mass, mesh=args.mesh, end_time=args.end_time,
-                             struck=args.struck, picture=args.picture)
+                             struck=args.struck, picture=args.picture, tone=args.tone)
     try:
         opts.validate()
     except ValueError as exc:

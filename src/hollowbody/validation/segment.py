@@ -2,7 +2,9 @@
 
 :func:`cut_segment` keeps the parts of one segment of a
 :class:`~hollowbody.body.pedestrian.Body` (for a leg segment: the long bone's
-shell tube, its two rigid end rows (the epiphyses), the muscle and the skin),
+shell tube, its two rigid end rows (the epiphyses) with the inertia carriers
+merged into them (*PART_INERTIA, *CONSTRAINED_RIGID_BODIES; they hold the
+epiphyses' mass: :mod:`hollowbody.body.inertia_fit`), the muscle and the skin),
 their nodes and what they use of the materials, sections and tissue curves
 (:func:`hollowbody.body.deck.materials`). Node, element, part, material and
 section ids are those of the whole pedestrian deck (``hollowbody
@@ -20,7 +22,7 @@ import numpy as np
 from hollowbody.body import anatomy as an
 from hollowbody.body.deck import material_id, materials, shell_sections
 from hollowbody.body.pedestrian import Body
-from hollowbody.io.keyword import Deck, Part
+from hollowbody.io.keyword import ConstrainedRigidBodies, Deck, Part, PartInertia
 
 #: Roles of a limb segment's parts (keys of ``Body.parts`` after ``<segment>_<side>_``).
 ROLES = ("bone", "proximal", "distal", "muscle", "skin")
@@ -56,6 +58,9 @@ def cut_segment(body: Body, segment: str, side: str = "l") -> Segment:
 
     parts = segment_parts(body, segment, side)
     keep = {p.pid for p in parts.values()}
+    carriers = {body.carriers[parts[r].pid]: parts[r].pid for r in ("proximal", "distal")
+                if parts[r].pid in body.carriers}
+    keep |= set(carriers)
     x = body.mesh.coords()
     first_eid: dict[int, int] = {}
     eid = 1
@@ -76,9 +81,18 @@ def cut_segment(body: Body, segment: str, side: str = "l") -> Segment:
             deck.add_solids(ids, p.pid, p.conn + 1)
         else:
             deck.add_shells(ids, p.pid, p.conn + 1)
+        secid = 1 if p.kind == "solid" else secs[p.thickness]
+        if p.pid in carriers:  # an inertia carrier: given mass properties, merged
+            m, c, inertia = p.inertia
+            deck.add(PartInertia(pid=p.pid, secid=secid, mid=material_id(p), title=p.name,
+                                 xc=c[0], yc=c[1], zc=c[2], tm=m, ixx=inertia[0, 0],
+                                 ixy=inertia[0, 1], ixz=inertia[0, 2], iyy=inertia[1, 1],
+                                 iyz=inertia[1, 2], izz=inertia[2, 2]))
+            deck.add(ConstrainedRigidBodies(pidm=carriers[p.pid], pids=p.pid))
+            continue
         counts[p.kind] += p.conn.shape[0]
-        deck.add(Part(pid=p.pid, secid=1 if p.kind == "solid" else secs[p.thickness],
-                      mid=material_id(p), hgid=1 if p.kind == "solid" else 0, title=p.name))
+        deck.add(Part(pid=p.pid, secid=secid, mid=material_id(p),
+                      hgid=1 if p.kind == "solid" else 0, title=p.name))
     prox, dist = SEGMENT_AXES[segment]
     sk = body.skeleton
     return Segment(f"{segment}_{side}", deck, {r: p.pid for r, p in parts.items()},

@@ -85,13 +85,15 @@ def test_deck_builds_and_writes_as_valid_input(built, tmp_path, case, tissue) ->
 
 @pytest.mark.parametrize("case, tissue", VARIANTS)
 def test_only_the_segment_is_kept(built, body, case, tissue) -> None:
-    """Parts: the segment's bone, epiphyses, muscle and skin and the impactor; no joint,
-    load, floor or SPC; the segment's mass is de Leva's (the pedestrian sizes each
-    segment to it; 0.1 %: the solver's element volumes differ from the generator's by
-    0.03 % here; the hollow conversion keeps the mass within 0.5 %)."""
+    """Parts: the segment's bone, epiphyses (with their inertia carriers), muscle and
+    skin and the impactor; no joint, load, floor or SPC; the segment's mass is de
+    Leva's (the pedestrian sizes each segment to it; 0.1 %: the solver's element
+    volumes differ from the generator's by 0.03 % here; the hollow conversion keeps
+    the mass within 0.5 %)."""
     s, m = built[case, tissue]
     pids = _pids(body, case)
-    assert set(m.parts) == set(pids.values()) | {s.impactor_pid}
+    carriers = {body.carriers[pids[r]] for r in ("proximal", "distal")}
+    assert set(m.parts) == set(pids.values()) | carriers | {s.impactor_pid}
     name = f"{SEGMENT[case]}_l"
     titles = {p.pid: p.title for p in s.deck.of_type(Part)}
     assert all(titles[p].startswith(name) for p in pids.values())

@@ -44,6 +44,29 @@ def test_standing_under_gravity(tmp_path, tissue: str) -> None:
     assert max(abs(float(row["uz [mm]"])) for row in nodes) < 0.5
 
 
+def test_walking_with_tone_under_gravity(tmp_path) -> None:
+    """The walking posture with its postural tone (coarse mesh, 3 ms): runs to normal
+    termination with quality ok and a closed energy balance (1 %), the feet stay on
+    the floor (0.5 mm) and the floor carries the body. Whether the tone holds the
+    posture for 150 ms is a long run (docs/pedestrian.md, Figures)."""
+    r = generate(tmp_path, PedestrianOptions(mesh=50.0, end_time=3.0, picture=False,
+                                             posture="walking"))
+    assert r["postural_tone_Nm_per_rad"]["knee_r"][1] > 100.0
+    out = tmp_path / "run"
+    assert main(["run", str(tmp_path / "pedestrian.k"), "--out", str(out), "--quiet",
+                 "--no-vtk"]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "normal termination"
+    assert s["quality"] == "ok", s["quality_reasons"]
+    assert abs(s["energy_ratio"] - 1.0) < 0.01
+    feet = {p.pid for _, p in _feet(tmp_path)}
+    rows = [row for row in csv.DictReader((out / "rbdout.csv").open())
+            if int(row["part"]) in feet]
+    assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
+    wall = list(csv.DictReader((out / "rwforc.csv").open()))
+    assert float(wall[-1]["normal [kN]"]) > 0.0
+
+
 def _feet(folder):
     """(key, part) of the feet, read from the region decks' part titles."""
     from hollowbody.io.keyword import Part, PartInertia, read_deck
