@@ -157,11 +157,11 @@ def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, 
         nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
         element_frame(xe, fr)
         if ihq == 7:
-            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
+            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, bulk, vol0, dt, rot, fr,
                                      ax0, ax1, ax2, qd, hgstate, hgdisp, hgmod, e, qf, qw)
         else:
-            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
-                                         ax0, ax1, ax2, qd, hgstate, hgmod, e, qf)
+            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, bulk, vol0, dt, rot,
+                                         fr, ax0, ax1, ax2, qd, hgstate, hgmod, e, qf)
     elif ihq >= 4:
         bb = 0.0
         for a in range(8):

@@ -160,35 +160,42 @@ def assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, out):
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def passive_scale(g_new, g_old):
+def passive_scale(g_new, g_old, bulk):
     """The factor on the stored state when the shear modulus moves from g_old to g_new.
 
-    Incremental form (IHQ 6, state Q): ``min(1, g_new / g_old)``, the stored forces
-    scaled down with a falling modulus, kept when it rises. Total form (IHQ 7, state
-    d): call with the arguments swapped, ``min(1, g_old / g_new)``, the stored
-    displacement scaled down with a rising modulus. Either way the stored energy
-    ``Q . K^-1 Q / 2 = d . K d / 2`` does not grow at a fixed configuration
-    (docs/elements.md, "Passive rule"). Returns 1 when g_old <= 0 (first call).
+    ``K_as(G) = G A + P(G) B + E(G) C`` with fixed positive semi-definite A, B, C
+    (geometry) and the plane-stress modulus ``P = E / (1 - nu) = 18 K G / (3K + 4G)``,
+    ``E = 9 K G / (3K + G)`` (bulk K fixed). The moduli's ratios ``r_G = g_new / g_old``,
+    ``r_P``, ``r_E`` satisfy ``min(r_G, r_P) <= r_E <= max(r_G, r_P)``, hence
+    ``min(r_G, r_P) K_old <= K_new <= max(r_G, r_P) K_old`` (Loewner order).
+    Returns ``sqrt(min(r_G, r_P))``: scaling the stored forces Q (IHQ 6) by it gives
+    ``Q . K_new^-1 Q <= Q . K_old^-1 Q`` unchanged or smaller, equal to first order
+    in G / K (exactly, for the G part). For the stored displacement d (IHQ 7) call it
+    with g_new and g_old swapped: ``sqrt(min(1 / r_G, 1 / r_P))``, and
+    ``d . K_new d <= d . K_old d``. Returns 1 when g_old <= 0 (first call).
     """
-    if g_old > 0.0 and g_new < g_old:
-        return g_new / g_old
-    return 1.0
+    if g_old <= 0.0 or g_new == g_old:
+        return 1.0
+    r_g = g_new / g_old
+    r_p = r_g * (3.0 * bulk + 4.0 * g_old) / (3.0 * bulk + 4.0 * g_new)
+    return math.sqrt(min(r_g, r_p))
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
-                             hgmod, e, qf):
+def assumed_strain_hourglass(qh, e_mod, nu, shear, bulk, vol, dt, rot, fr, a0, a1, a2, qd,
+                             state, hgmod, e, qf):
     """Kernel: incremental assumed-strain hourglass forces (IHQ 6) of element ``e``.
 
     Moduli, vol, fr, a0..a2 as :func:`assumed_strain_product`; dt ms; rot (3, 3)
     incremental rotation; qd (4, 3) mm/ms hourglass rates (global components);
-    state (e, 4, 3) kN generalised hourglass forces, rotated, scaled by
-    ``passive_scale(shear, hgmod[e])`` and incremented by ``dt K qd`` in place;
+    bulk GPa the bulk modulus; state (e, 4, 3) kN generalised hourglass forces,
+    rotated, scaled by ``passive_scale(shear, hgmod[e], bulk)`` and incremented by
+    ``dt K qd`` in place;
     hgmod (e,) GPa the shear modulus of the last call (set to ``shear``); qf (4, 3)
     receives the forces. Returns the work increment
     ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J) with the forces of the last call.
     """
-    s = passive_scale(shear, hgmod[e])
+    s = passive_scale(shear, hgmod[e], bulk)
     hgmod[e] = shear
     assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, qf)
     w = 0.0
@@ -208,18 +215,18 @@ def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2,
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def assumed_strain_total(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
+def assumed_strain_total(qh, e_mod, nu, shear, bulk, vol, dt, rot, fr, a0, a1, a2, qd, state,
                          disp, hgmod, e, qf, work):
     """Kernel: total-displacement assumed-strain hourglass forces (IHQ 7) of element ``e``.
 
     As :func:`assumed_strain_hourglass`, but the state is the hourglass
     displacement ``disp`` (e, 4, 3) mm (rotated with the element, scaled by
-    ``passive_scale(hgmod[e], shear)`` and incremented by ``dt qd``) and the forces
+    ``passive_scale(hgmod[e], shear, bulk)`` and incremented by ``dt qd``) and the forces
     are ``Q = K disp`` with the current stiffness; state (e, 4, 3) keeps the forces
     of the last call (work of the step); hgmod (e,) GPa as there. work (4, 3)
     scratch. Returns the work increment (J).
     """
-    s = passive_scale(hgmod[e], shear)
+    s = passive_scale(hgmod[e], shear, bulk)
     hgmod[e] = shear
     for m in range(4):
         d0, d1, d2 = rotate_rows(rot, disp, e, m)
