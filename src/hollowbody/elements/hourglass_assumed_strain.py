@@ -23,7 +23,10 @@ zeta xi, xi eta zeta; the FB amplitudes of :mod:`~hollowbody.elements.hourglass`
 with ``Ebar = E / (1 - nu^2)``; the generalised hourglass forces are
 ``Q = dW/dq``. They are a state (as in the FB stiffness form): rotated with the
 element (Hughes-Winget) and incremented by ``dt dQ/dq . qd`` in the current
-frame, so the form is co-rotational and incremental. Units: mm, mm/ms, kN, GPa.
+frame, so the form is co-rotational and incremental. The moduli follow the law's
+current tangent; when they change, the stored state is first rescaled by
+:func:`passive_scale` so that its stored energy is kept to first order in G / K and
+never raised (docs/elements.md, "Passive rule"). Units: mm, mm/ms, kN, GPa.
 """
 
 from __future__ import annotations
