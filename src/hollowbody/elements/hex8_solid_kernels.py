@@ -138,13 +138,14 @@ def _zero(fwork, e):
 
 @njit(cache=True, inline="always", fastmath={"contract"})
 def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, qd, qf,
-               hgstate, hgdisp, fwork, elastic, fr, qw, ax0, ax1, ax2, vol0):
+               hgstate, hgdisp, hgmod, fwork, elastic, fr, qw, ax0, ax1, ax2, vol0):
     """Adds hourglass forces to fwork[e]; returns the hourglass work increment (J).
 
     elastic = (G0, K) GPa, the law's small-strain shear and bulk moduli (IHQ 6: the
     shear modulus used is ``max(G0, 3/4 (modulus - K))``, the law's current tangent
     implied by its modulus ``K + 4G/3``); fr (3, 3), qw (4, 3) scratch; hgdisp
-    (e, 4, 3) mm hourglass displacements (IHQ 7 only); ax0..ax2 mm, vol0 mm^3 the
+    (e, 4, 3) mm hourglass displacements (IHQ 7 only); hgmod (e,) GPa the shear
+    modulus of the last call (IHQ 6/7, passive rule); ax0..ax2 mm, vol0 mm^3 the
     element's reference half-lengths and volume (the stiffness is that of the
     initial shape, in the current frame).
     """
@@ -156,11 +157,11 @@ def _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, b, lg, rot, hx, 
         nu = (3.0 * bulk - 2.0 * g) / (6.0 * bulk + 2.0 * g)
         element_frame(xe, fr)
         if ihq == 7:
-            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
-                                     ax0, ax1, ax2, qd, hgstate, hgdisp, e, qf, qw)
+            w = assumed_strain_total(qh, 2.0 * g * (1.0 + nu), nu, g, bulk, vol0, dt, rot, fr,
+                                     ax0, ax1, ax2, qd, hgstate, hgdisp, hgmod, e, qf, qw)
         else:
-            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, vol0, dt, rot, fr,
-                                         ax0, ax1, ax2, qd, hgstate, e, qf)
+            w = assumed_strain_hourglass(qh, 2.0 * g * (1.0 + nu), nu, g, bulk, vol0, dt, rot,
+                                         fr, ax0, ax1, ax2, qd, hgstate, hgmod, e, qf)
     elif ihq >= 4:
         bb = 0.0
         for a in range(8):
@@ -202,7 +203,9 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
     * state = (alive (e,) bool, stress (e, 6) GPa in/out, volume (e,) mm^3 in
       (previous) / out (current), hgstate (e, 4, 3) kN generalised hourglass
       forces of the last call, hgdisp (e, 4, 3) mm hourglass displacements (IHQ 7;
-      any (k, 4, 3) array otherwise), fwork (e, 8, 3) kN element forces (in: f^n,
+      any (k, 4, 3) array otherwise), hgmod (e,) GPa shear modulus of the hourglass
+      stiffness at the last call (IHQ 6/7; any (k,) array otherwise), fwork (e, 8, 3)
+      kN element forces (in: f^n,
       out: f^{n+1}), dt_elem (e,) ms out, c_elem (e,) mm/ms out);
     * params, history: the law's parameter and history tuples;
     * hg (N_HG,) float64: IHQ (6 / 7: assumed strain, incremental / total;
@@ -220,7 +223,7 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
         if stamp < 0:  # never: the sources' digest only keys the on-disk cache
             return
         conn, lfac, volume0, b0, bounds, axes0 = geom
-        alive, stress, volume, hgstate, hgdisp, fwork, dt_elem, c_elem = state
+        alive, stress, volume, hgstate, hgdisp, hgmod, fwork, dt_elem, c_elem = state
         consts = law.solid_constants(params)
         ihq = int(hg[H_IHQ])
         qh, q1, q2 = hg[H_QH], hg[H_Q1], hg[H_Q2]
@@ -275,7 +278,8 @@ def make_hex8_kernel(law: ModuleType) -> Callable[..., None]:
                 dhg = 0.0
                 if qh > 0.0:
                     dhg = _hourglass(e, ihq, qh, rho, modulus, c, vol, l, dt, xe, ve, bt, lg,
-                                     rot, hx, qd, qf, hgstate, hgdisp, fwork, elastic, fr, qw,
+                                     rot, hx, qd, qf, hgstate, hgdisp, hgmod, fwork, elastic,
+                                     fr, qw,
                                      axes0[e, 0], axes0[e, 1], axes0[e, 2], volume0[e])
                 dw = -0.5 * dt * (w_old + _power(ve, fwork, e))
                 eint += dw - dhg

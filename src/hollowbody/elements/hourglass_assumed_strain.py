@@ -23,7 +23,10 @@ zeta xi, xi eta zeta; the FB amplitudes of :mod:`~hollowbody.elements.hourglass`
 with ``Ebar = E / (1 - nu^2)``; the generalised hourglass forces are
 ``Q = dW/dq``. They are a state (as in the FB stiffness form): rotated with the
 element (Hughes-Winget) and incremented by ``dt dQ/dq . qd`` in the current
-frame, so the form is co-rotational and incremental. Units: mm, mm/ms, kN, GPa.
+frame, so the form is co-rotational and incremental. The moduli follow the law's
+current tangent; when they change, the stored state is first rescaled by
+:func:`passive_scale` so that its stored energy is kept to first order in G / K and
+never raised (docs/elements.md, "Passive rule"). Units: mm, mm/ms, kN, GPa.
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ import math
 
 from numba import njit
 
-from hollowbody.elements.hourglass import advance_rotated, rotate_rows
+from hollowbody.elements.hourglass import rotate_rows
 
 _TINY = 1e-300
 
@@ -160,36 +163,79 @@ def assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, out):
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def assumed_strain_hourglass(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
-                             e, qf):
+def passive_scale(g_new, g_old, bulk):
+    """The factor on the stored state when the shear modulus moves from g_old to g_new.
+
+    ``K_as(G) = G A + P(G) B + E(G) C`` with fixed positive semi-definite A, B, C
+    (geometry) and the plane-stress modulus ``P = E / (1 - nu) = 18 K G / (3K + 4G)``,
+    ``E = 9 K G / (3K + G)`` (bulk K fixed). The moduli's ratios ``r_G = g_new / g_old``,
+    ``r_P``, ``r_E`` satisfy ``min(r_G, r_P) <= r_E <= max(r_G, r_P)``, hence
+    ``min(r_G, r_P) K_old <= K_new <= max(r_G, r_P) K_old`` (Loewner order).
+    Returns ``sqrt(min(r_G, r_P))``: scaling the stored forces Q (IHQ 6) by it gives
+    ``Q . K_new^-1 Q <= Q . K_old^-1 Q`` unchanged or smaller, equal to first order
+    in G / K (exactly, for the G part). For the stored displacement d (IHQ 7) call it
+    with g_new and g_old swapped: ``sqrt(min(1 / r_G, 1 / r_P))``, and
+    ``d . K_new d <= d . K_old d``. Returns 1 when g_old <= 0 (first call).
+    """
+    if g_old <= 0.0 or g_new == g_old:
+        return 1.0
+    r_g = g_new / g_old
+    r_p = r_g * (3.0 * bulk + 4.0 * g_old) / (3.0 * bulk + 4.0 * g_new)
+    return math.sqrt(min(r_g, r_p))
+
+
+@njit(cache=True, inline="always", fastmath={"contract"})
+def assumed_strain_hourglass(qh, e_mod, nu, shear, bulk, vol, dt, rot, fr, a0, a1, a2, qd,
+                             state, hgmod, e, qf):
     """Kernel: incremental assumed-strain hourglass forces (IHQ 6) of element ``e``.
 
     Moduli, vol, fr, a0..a2 as :func:`assumed_strain_product`; dt ms; rot (3, 3)
     incremental rotation; qd (4, 3) mm/ms hourglass rates (global components);
-    state (e, 4, 3) kN generalised hourglass forces, rotated and incremented by
-    ``dt K qd`` in place; qf (4, 3) receives them. Returns the work increment
-    ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J).
+    bulk GPa the bulk modulus; state (e, 4, 3) kN generalised hourglass forces,
+    rotated, scaled by ``passive_scale(shear, hgmod[e], bulk)`` and incremented by
+    ``dt K qd`` in place;
+    hgmod (e,) GPa the shear modulus of the last call (set to ``shear``); qf (4, 3)
+    receives the forces. Returns the work increment
+    ``dt (Q_old_rotated + Q_new) / 2 . qd`` (J) with the forces of the last call.
     """
+    s = passive_scale(shear, hgmod[e], bulk)
+    hgmod[e] = shear
     assumed_strain_product(qh, e_mod, nu, shear, vol, fr, a0, a1, a2, qd, qf)
-    return advance_rotated(rot, state, e, dt, qf, dt, qd, qf)
+    w = 0.0
+    for m in range(4):
+        r0, r1, r2 = rotate_rows(rot, state, e, m)
+        n0 = s * r0 + dt * qf[m, 0]
+        n1 = s * r1 + dt * qf[m, 1]
+        n2 = s * r2 + dt * qf[m, 2]
+        w += 0.5 * dt * ((r0 + n0) * qd[m, 0] + (r1 + n1) * qd[m, 1] + (r2 + n2) * qd[m, 2])
+        state[e, m, 0] = n0
+        state[e, m, 1] = n1
+        state[e, m, 2] = n2
+        qf[m, 0] = n0
+        qf[m, 1] = n1
+        qf[m, 2] = n2
+    return w
 
 
 @njit(cache=True, inline="always", fastmath={"contract"})
-def assumed_strain_total(qh, e_mod, nu, shear, vol, dt, rot, fr, a0, a1, a2, qd, state,
-                         disp, e, qf, work):
+def assumed_strain_total(qh, e_mod, nu, shear, bulk, vol, dt, rot, fr, a0, a1, a2, qd, state,
+                         disp, hgmod, e, qf, work):
     """Kernel: total-displacement assumed-strain hourglass forces (IHQ 7) of element ``e``.
 
     As :func:`assumed_strain_hourglass`, but the state is the hourglass
-    displacement ``disp`` (e, 4, 3) mm (rotated with the element and incremented
-    by ``dt qd``) and the forces are ``Q = K disp`` with the current stiffness;
-    state (e, 4, 3) keeps the forces of the last call (work of the step). work
-    (4, 3) scratch. Returns the work increment (J).
+    displacement ``disp`` (e, 4, 3) mm (rotated with the element, scaled by
+    ``passive_scale(hgmod[e], shear, bulk)`` and incremented by ``dt qd``) and the forces
+    are ``Q = K disp`` with the current stiffness; state (e, 4, 3) keeps the forces
+    of the last call (work of the step); hgmod (e,) GPa as there. work (4, 3)
+    scratch. Returns the work increment (J).
     """
+    s = passive_scale(hgmod[e], shear, bulk)
+    hgmod[e] = shear
     for m in range(4):
         d0, d1, d2 = rotate_rows(rot, disp, e, m)
-        disp[e, m, 0] = d0 + dt * qd[m, 0]
-        disp[e, m, 1] = d1 + dt * qd[m, 1]
-        disp[e, m, 2] = d2 + dt * qd[m, 2]
+        disp[e, m, 0] = s * d0 + dt * qd[m, 0]
+        disp[e, m, 1] = s * d1 + dt * qd[m, 1]
+        disp[e, m, 2] = s * d2 + dt * qd[m, 2]
         work[m, 0] = disp[e, m, 0]
         work[m, 1] = disp[e, m, 1]
         work[m, 2] = disp[e, m, 2]

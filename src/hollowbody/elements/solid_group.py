@@ -90,8 +90,8 @@ class SolidGroupRuntime:
     #: arrays are restored in place, floats by assignment. ``_fwork`` holds the
     #: element forces f^n, read by the next call (energy of the step).
     STATE_FIELDS: tuple[str, ...] = (
-        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_fwork",
-        "internal_energy", "hourglass_energy") + HISTORY_FIELDS
+        "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_hgmod",
+        "_fwork", "internal_energy", "hourglass_energy") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
                  curves: dict[int, Curve], node_x0: np.ndarray) -> None:
@@ -146,6 +146,8 @@ class SolidGroupRuntime:
         self._hgstate = np.zeros((e, 4, 3))  # generalised hourglass forces (kN)
         self._axes0 = reference_half_lengths(self._conn_k, x0)
         self._hgdisp = np.zeros((e if ihq == 7 else 1, 4, 3))  # hourglass displacements (mm)
+        # shear modulus (GPa) of the assumed-strain stiffness at the last call (passive rule)
+        self._hgmod = np.full(e if ihq >= 6 else 1, g_hg)
 
         self._fwork = np.zeros((e, 8, 3))
         self.dt_elem = element_time_steps(self._conn_k, x0, c0, self.shape) if e else \
@@ -177,7 +179,7 @@ class SolidGroupRuntime:
         # argument groups built per call, so a rebound attribute is always the one used
         geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds, self._axes0)
         state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
-                 self._fwork, self.dt_elem, self._c)
+                 self._hgmod, self._fwork, self.dt_elem, self._c)
         history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
         self._kernel(x, v, float(dt), geom, state, self._params, history, self._hg, out)
         numba.set_parallel_chunksize(old_chunk)
