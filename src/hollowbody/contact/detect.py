@@ -177,6 +177,11 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             else:
                 if d >= reach or d <= -(rel + ext):
                     continue
+                if d < 0.0 and not fresh and nx * mx + ny * my + nz * mz < 0.0:
+                    # behind a face turned against the side the node was pushed to last
+                    # cycle: it came from that side, it did not pass through this face
+                    # (the bore face of a flesh layer seen from its outer face)
+                    continue
                 gap = reach - d
             if over_edge:
                 held = True
@@ -213,9 +218,14 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             bw1 = hw1
             bw2 = hw2
             bw3 = hw3
+        # a contact whose normal turned against last cycle's is a new contact: the
+        # force pushed the node the other way (a fold's opposite layer)
+        first = prev
+        if best >= 0 and prev >= 0 and bnx * mx + bny * my + bnz * mz < 0.0:
+            first = -1
         # a fresh contact starts the stiffening from its first gap (no increment)
-        gold[i] = ogap[i] if prev >= 0 else bgap
-        sold[i] = prev
+        gold[i] = ogap[i] if first >= 0 else bgap
+        sold[i] = first
         othru[i] = -1
         if prev >= 0 and prev != best and oentry[i] != 0:
             othru[i] = pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, prev,
@@ -228,7 +238,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             nprev[i, 1] = 0.0
             nprev[i, 2] = 0.0
             continue
-        if prev < 0:  # entered from outside: shallow first gap
+        if first < 0:  # entered from outside: shallow first gap
             oentry[i] = 1 if bgap <= ENTRY_FRACTION * brel else 0
         nprev[i, 0] = bnx
         nprev[i, 1] = bny
