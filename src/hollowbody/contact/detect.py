@@ -85,6 +85,9 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
         brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
+        breach = 0.0
+        fad = 1.0e300
+        fnx = fny = fnz = 0.0
         held = False
         hgap = hrel = 0.0
         hnx = hny = hnz = 0.0
@@ -175,12 +178,13 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 ny *= sg
                 nz *= sg
             else:
+                if d >= 0.0 and ad < fad and not over_edge:
+                    # the nearest face the node is in front of (outside the body there)
+                    fad = ad
+                    fnx = nx
+                    fny = ny
+                    fnz = nz
                 if d >= reach or d <= -(rel + ext):
-                    continue
-                if d < 0.0 and not fresh and nx * mx + ny * my + nz * mz < 0.0:
-                    # behind a face turned against the side the node was pushed to last
-                    # cycle: it came from that side, it did not pass through this face
-                    # (the bore face of a flesh layer seen from its outer face)
                     continue
                 gap = reach - d
             if over_edge:
@@ -199,6 +203,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 best_ad = ad
                 best = s
                 bgap = gap
+                breach = reach
                 brel = reach + rel
                 bnx = nx
                 bny = ny
@@ -207,6 +212,12 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
+        if (best >= 0 and s_two[best] == 0 and bgap > breach and fad < best_ad
+                and fnx * bnx + fny * bny + fnz * bnz < 0.0):
+            # behind a face (a layer's inner face) while nearer to a face of the other
+            # side of the layer that it is in front of: it is outside that layer, not
+            # in it (the bore face of a flesh tube seen from its outer face)
+            best = -1
         if best < 0 and held:
             best = prev
             bgap = hgap
