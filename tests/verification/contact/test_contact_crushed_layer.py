@@ -52,7 +52,7 @@ def test_plate_on_flesh_tube_contact_is_passive(tmp_path, friction, vdc):
     assert result.summary["contact_pass_through"] == {"1": {"events": 0, "nodes": 0}}
     g = np.genfromtxt(tmp_path / "out" / "glstat.csv", delimiter=",", names=True)
     e0 = 0.5 * MASS * SPEED**2
-    assert g["total_J"][0] == pytest.approx(e0, rel=1e-9)
+    assert g["total_J"][0] == pytest.approx(e0, rel=1e-4)  # full-step estimate at t = 0
     # the plate crushed the tube (a third of the impact energy in it) and came back
     assert g["internal_J"].max() > 0.3 * e0
     vz = np.genfromtxt(tmp_path / "out" / "nodout.csv", delimiter=",", names=True)["vz_mmms"]
