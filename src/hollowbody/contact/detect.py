@@ -24,6 +24,13 @@ pair so far, the circumscribed circle, and the segment's two slabs
 (:func:`~hollowbody.contact.frames.slab_bound`: no foot point inside the
 segment within the contact distance and the best distance so far).
 
+The far face of a layer: a node behind a one-sided face is not in contact with
+it when a nearer one-sided face that it is in front of faces the opposite way
+(it is outside the layer there; the small inner face of a wedge-shaped flesh
+element round a bone reaches past the outer face with PENMAX of its V / A).
+A contact whose normal turns against last cycle's starts as a new contact
+(``sold`` -1: nothing carried over, see :mod:`hollowbody.contact.penalty`).
+
 Ties go to the lowest segment number. A node that projects onto no
 candidate but lies within ``HOLD_TOL`` (natural coordinates) of the segment it
 was in contact with last cycle keeps that segment: behind a convex edge of the

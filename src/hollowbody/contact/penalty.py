@@ -20,12 +20,15 @@ cycle by k (g - g_prev); a node that moves on to another segment keeps its
 force and adds the approach of this step; a fresh contact starts from the
 approach of this step (a node found already deep -- entering sideways over a
 segment's edge in a fold -- is held, not fired out; initial penetrations at
-the first call push apart); always ``0 <= F <= k g``.
+the first call push apart); always ``0 <= F <= k g``. A contact whose normal
+turned against last cycle's counts as fresh (spring, stiffening and friction
+forces are not carried over).
 A force law in the total form ``k g`` makes energy out of every such jump.
 Deeper than ``g1 = stiffen * G`` (G = reach + release depth, the penetration
 at which the node would be released) the tangent stiffness rises
 incrementally to the stability cap at the current step (see
-:mod:`hollowbody.contact.law`). So the force a node can carry before release
+:mod:`hollowbody.contact.law`); across a change of segment it too grows by
+the approach of the step only. So the force a node can carry before release
 follows the stiffening of the material under it (whose wave speed sets dt) and
 the speed of the impact, without exceeding the explicit stability limit.
 Minus the optional VDC damping ``c v_n`` (never adhesive). Friction by an
