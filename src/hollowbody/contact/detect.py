@@ -24,6 +24,13 @@ pair so far, the circumscribed circle, and the segment's two slabs
 (:func:`~hollowbody.contact.frames.slab_bound`: no foot point inside the
 segment within the contact distance and the best distance so far).
 
+The far face of a layer: a node behind a one-sided face is not in contact with
+it when a nearer one-sided face that it is in front of faces the opposite way
+(it is outside the layer there; the small inner face of a wedge-shaped flesh
+element round a bone reaches past the outer face with PENMAX of its V / A).
+A contact whose normal turns against last cycle's starts as a new contact
+(``sold`` -1: nothing carried over, see :mod:`hollowbody.contact.penalty`).
+
 Ties go to the lowest segment number. A node that projects onto no
 candidate but lies within ``HOLD_TOL`` (natural coordinates) of the segment it
 was in contact with last cycle keeps that segment: behind a convex edge of the
@@ -85,6 +92,9 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
         brel = 0.0
         bnx = bny = bnz = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
+        breach = 0.0
+        fad = 1.0e300
+        fnx = fny = fnz = 0.0
         held = False
         hgap = hrel = 0.0
         hnx = hny = hnz = 0.0
@@ -175,6 +185,12 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 ny *= sg
                 nz *= sg
             else:
+                if d >= 0.0 and ad < fad and not over_edge:
+                    # the nearest face the node is in front of (outside the body there)
+                    fad = ad
+                    fnx = nx
+                    fny = ny
+                    fnz = nz
                 if d >= reach or d <= -(rel + ext):
                     continue
                 gap = reach - d
@@ -194,6 +210,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 best_ad = ad
                 best = s
                 bgap = gap
+                breach = reach
                 brel = reach + rel
                 bnx = nx
                 bny = ny
@@ -202,6 +219,12 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
                 bw1 = w1
                 bw2 = w2
                 bw3 = w3
+        if (best >= 0 and s_two[best] == 0 and bgap > breach and fad < best_ad
+                and fnx * bnx + fny * bny + fnz * bnz < 0.0):
+            # behind a face (a layer's inner face) while nearer to a face of the other
+            # side of the layer that it is in front of: it is outside that layer, not
+            # in it (the bore face of a flesh tube seen from its outer face)
+            best = -1
         if best < 0 and held:
             best = prev
             bgap = hgap
@@ -213,9 +236,14 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             bw1 = hw1
             bw2 = hw2
             bw3 = hw3
+        # a contact whose normal turned against last cycle's is a new contact: the
+        # force pushed the node the other way (a fold's opposite layer)
+        first = prev
+        if best >= 0 and prev >= 0 and bnx * mx + bny * my + bnz * mz < 0.0:
+            first = -1
         # a fresh contact starts the stiffening from its first gap (no increment)
-        gold[i] = ogap[i] if prev >= 0 else bgap
-        sold[i] = prev
+        gold[i] = ogap[i] if first >= 0 else bgap
+        sold[i] = first
         othru[i] = -1
         if prev >= 0 and prev != best and oentry[i] != 0:
             othru[i] = pushed_through(px, py, pz, tn, x, seg, s_thick, s_depth, s_two, prev,
@@ -228,7 +256,7 @@ def _detect_range(i0, i1, act, x, nodes, n_thick, seg, s_thick, s_depth, s_two, 
             nprev[i, 1] = 0.0
             nprev[i, 2] = 0.0
             continue
-        if prev < 0:  # entered from outside: shallow first gap
+        if first < 0:  # entered from outside: shallow first gap
             oentry[i] = 1 if bgap <= ENTRY_FRACTION * brel else 0
         nprev[i, 0] = bnx
         nprev[i, 1] = bny

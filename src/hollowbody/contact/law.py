@@ -81,8 +81,11 @@ def penalty_force(gap, gap_prev, fd_prev, k, kd, g1, ramp):
         F_d = clamp(F_d,prev + r(e_mid) k_x (e - e_prev), 0, F_total(e))
         F_total(e) = k_x e^2 / (2 ramp)  (e <= ramp),  k_x (e - ramp / 2)  (beyond)
 
-    e_prev from gap_prev, the last cycle's gap (the kernel passes the gap
-    itself for a fresh contact, whose stiffening starts from there), e_mid
+    e_prev from gap_prev, the last cycle's gap on the same segment (the
+    kernel passes the gap itself for a fresh contact, whose stiffening starts
+    from there, and ``gap + v_n dt`` for a node that moved on to another
+    segment: its F_d grows by the approach of its step, as the spring's, not
+    by the difference of two segments' gaps, which made the force jump), e_mid
     the mean of both. Incremental, so a falling time step (rising kd)
     stiffens the next increments but never makes the force jump at a fixed
     gap (the total form F_total with k_x(dt) would inject energy whenever dt

@@ -20,12 +20,15 @@ cycle by k (g - g_prev); a node that moves on to another segment keeps its
 force and adds the approach of this step; a fresh contact starts from the
 approach of this step (a node found already deep -- entering sideways over a
 segment's edge in a fold -- is held, not fired out; initial penetrations at
-the first call push apart); always ``0 <= F <= k g``.
+the first call push apart); always ``0 <= F <= k g``. A contact whose normal
+turned against last cycle's counts as fresh (spring, stiffening and friction
+forces are not carried over).
 A force law in the total form ``k g`` makes energy out of every such jump.
 Deeper than ``g1 = stiffen * G`` (G = reach + release depth, the penetration
 at which the node would be released) the tangent stiffness rises
 incrementally to the stability cap at the current step (see
-:mod:`hollowbody.contact.law`). So the force a node can carry before release
+:mod:`hollowbody.contact.law`); across a change of segment it too grows by
+the approach of the step only. So the force a node can carry before release
 follows the stiffening of the material under it (whose wave speed sets dt) and
 the speed of the impact, without exceeding the explicit stability limit.
 Minus the optional VDC damping ``c v_n`` (never adhesive). Friction by an
@@ -143,15 +146,25 @@ def _force_range(i0, i1, act, v, dt, dtc, nodes, n_k, n_mass, seg, s_k, s_mass, 
             # nothing in the pair can be set in motion but a rigid body (a rigid
             # impactor on a fixed base): the stiffened zone holds the body
             g1 = STIFFEN_FRACTION * brel
+        # the first call of a run: an initial penetration counts as this step's
+        # approach (it pushes apart); later a fresh contact gets only its approach
+        dn = -bgap if params[11] > 0.0 and prev < 0 else vn * dt
+        if prev < 0:  # a new contact (or one turned over): nothing carried
+            ofd[i] = 0.0
+            ft[i, 0] = 0.0
+            ft[i, 1] = 0.0
+            ft[i, 2] = 0.0
+        elif prev != s:
+            # moved on to another segment: the stiffening grows by this step's approach,
+            # like the spring, not by the difference of the two segments' gaps
+            gprev = bgap + dn
         kd = 0.0
         if bgap > g1:
             kd = deep_stiffness(nd, a, b, c, dd, bw0, bw1, bw2, bw3, mloc, wsum, deep, dts)
         fn, fdn = penalty_force(bgap, gprev, ofd[i], k, kd, g1, 0.5 * (brel - g1))
         ofd[i] = fdn
-        # the first call of a run: an initial penetration counts as this step's
-        # approach (it pushes apart); later a fresh contact gets only its approach
-        dn = -bgap if params[11] > 0.0 and prev < 0 else vn * dt
-        fb = spring_force(bgap, gprev, ofn[i], k, dn, prev == s, prev >= 0)
+        fb = spring_force(bgap, gprev if prev == s else bgap, ofn[i], k, dn, prev == s,
+                          prev >= 0)
         fn += fb - k * bgap
         ofn[i] = fb
         # penetration not pushed back from: the node is released that much deeper

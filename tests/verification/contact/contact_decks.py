@@ -131,3 +131,72 @@ def rigid_plate_on_fixed_base(*, size: float = 45.0, elem: float = 7.5,
         deck.add(DatabaseAscii(name=name, dt=end / 200))
     deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
     return deck
+
+
+def flesh_tube_and_rigid_plate(*, r_in: float = 3.0, r_out: float = 15.0, n_around: int = 12,
+                               length: float = 40.0, n_long: int = 4,
+                               tissue_name: str = "muscle", plate_size: float = 60.0,
+                               plate_n: int = 10, plate_t: float = 1.0,
+                               plate_mass: float = 0.5, speed: float = 5.0, end: float = 3.0,
+                               friction: float = 0.2, vdc: float = 20.0) -> Deck:
+    """A flesh tube (an upper arm's muscle round its bone) struck across by a rigid plate.
+
+    One layer of hexahedra between radii ``r_in`` and ``r_out`` mm (``n_around``
+    around, ``n_long`` along the x axis, ``length`` mm), MAT_181 ``tissue_name``,
+    the nodes of its lowest outer line held (it rests on a support); the bore is
+    empty. The wedge-shaped elements have a small inner face: V / A of it is
+    (r_out^2 - r_in^2) / (2 r_in) ~ 36 mm, so PENMAX (0.4) of it reaches past the
+    outer face: a node at the outer face is within the release depth *behind*
+    the bore's face of the same element. The plate (``plate_size`` mm square,
+    ``plate_n`` x ``plate_n`` quads, rigid shells ``plate_t`` mm, ``plate_mass``
+    kg) starts 0.1 mm above its contact reach at ``speed`` mm/ms in -z.
+    *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE id 1 (flesh slave, plate master, SOFT 1,
+    friction, VDC ``vdc`` %): the shoulder impact's hub contact, small.
+    """
+    t = tissue(tissue_name)
+    th = np.linspace(0.0, 2.0 * np.pi, n_around, endpoint=False) + 0.5 * np.pi
+    xs = np.linspace(-0.5 * length, 0.5 * length, n_long + 1)
+    # node (k along, j radial 0 in / 1 out, i around)
+    kk, jj, ii = np.meshgrid(np.arange(n_long + 1), np.arange(2), np.arange(n_around),
+                             indexing="ij")
+    r = np.where(jj == 0, r_in, r_out)
+    xb = np.column_stack([xs[kk.ravel()], (r * np.cos(th[ii])).ravel(),
+                          (r * np.sin(th[ii])).ravel()])
+
+    def nid(k, j, i):
+        return (k * 2 + j) * n_around + (i % n_around)
+
+    conn = [[nid(k, 0, i), nid(k, 1, i), nid(k, 1, i + 1), nid(k, 0, i + 1),
+             nid(k + 1, 0, i), nid(k + 1, 1, i), nid(k + 1, 1, i + 1), nid(k + 1, 0, i + 1)]
+            for k in range(n_long) for i in range(n_around)]
+    cb = np.array(conn)
+    xp, qp = _plate(plate_size, plate_n, r_out + 0.5 * plate_t + 0.1)
+    bid = np.arange(1, xb.shape[0] + 1)
+    pid_nodes = PLATE_ID0 + np.arange(xp.shape[0])
+    deck = Deck()
+    deck.title = f"{tissue_name} tube and rigid plate"
+    deck.add_nodes(bid, xb)
+    deck.add_nodes(pid_nodes, xp)
+    deck.add_solids(np.arange(1, cb.shape[0] + 1), 1, bid[cb])
+    deck.add_shells(PLATE_ID0 + np.arange(qp.shape[0]), 2, pid_nodes[qp], thickness=plate_t)
+    deck.add(Part(pid=1, secid=1, mid=1, hgid=1, title="flesh"))
+    deck.add(Part(pid=2, secid=2, mid=2, title="plate"))
+    deck.add(SectionSolid(secid=1))
+    deck.add(SectionShell(secid=2, t1=plate_t, nip=2))
+    deck.add(MatSimplifiedRubber(mid=1, ro=t.density, km=t.bulk_modulus, lcid=1))
+    deck.add(DefineCurve(lcid=1, points=np.column_stack([t.strain, t.stress]).tolist()))
+    deck.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+    deck.add(MatRigid(mid=2, ro=plate_mass / (plate_size ** 2 * plate_t), e=210.0, pr=0.3,
+                      cmo=1, con1=4, con2=7))
+    low = np.isclose(xb[:, 2], -r_out)
+    deck.add(SetNodeList(sid=1, nodes=bid[low].tolist()))
+    deck.add(BoundarySpcSet(nsid=1, dofx=1, dofy=1, dofz=1))
+    deck.add(InitialVelocityGeneration(id=2, styp=2, vz=-speed))
+    deck.add(Contact(type="AUTOMATIC_SURFACE_TO_SURFACE", cid=1, ssid=1, sstyp=3, msid=2,
+                     mstyp=3, fs=friction, fd=friction, vdc=vdc, soft=1))
+    deck.add(ControlTermination(endtim=end))
+    deck.add(ControlTimestep(tssfac=0.9))
+    for name in ("GLSTAT", "RCFORC", "NODOUT"):
+        deck.add(DatabaseAscii(name=name, dt=end / 200))
+    deck.add(DatabaseHistoryNode(ids=[int(pid_nodes[0])]))
+    return deck
