@@ -73,14 +73,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def add_engine_arguments(p: argparse.ArgumentParser) -> None:
     """``--engine``, ``--np``, ``--engine-path``, ``--memory``, ``--dry-run``."""
-    p.add_argument("--engine", choices=("hollowbody", "openradioss", "lsdyna"),
-                   default="hollowbody",
-                   help="the engine that runs the deck (default: hollowbody, this program)")
-    p.add_argument("--np", type=int, default=1, metavar="N",
-                   help="MPI ranks of an external engine (default 1)")
-    p.add_argument("--engine-path", default=None, metavar="PATH",
-                   help="OpenRadioss folder or LS-DYNA executable (default: OPENRADIOSS_PATH "
-                        "/ LSDYNA, else the PATH)")
+    from hollowbody.cli.run_engine import add_external_engine_arguments
+
+    add_external_engine_arguments(p)
     p.add_argument("--memory", default=None, metavar="WORDS[,WORDS2]",
                    help="LS-DYNA memory= (and MPP memory2=) in words, e.g. 400m,80m (default: "
                         "from the model size)")
