@@ -128,3 +128,21 @@ def group_min_axes(conn: np.ndarray, axes: np.ndarray) -> int:
     if np.any(np.count_nonzero(np.diff(s, axis=1), axis=1) != 7):
         return 0
     return int(axes.min())
+
+
+def assign_step_factors(solids: list) -> None:
+    """Set ``step_factor`` of each solid group runtime from its alive elements.
+
+    solids: the runtimes of every deformable solid group of a model, each with
+    ``conn`` (e, 8), ``alive`` (e,) bool and ``step_material`` = (kind, params,
+    curves) as :func:`volumetric_step_factor` takes them. A face shared with an
+    alive element of any of the groups restrains it; called at set-up and again
+    when solids are eroded (a deleted neighbour frees the faces it covered).
+    """
+    if not solids:
+        return
+    conns = [np.asarray(rt.conn)[np.asarray(rt.alive)] for rt in solids]
+    for rt, conn, axes in zip(solids, conns, restrained_axes(conns)):
+        kind, params, curves = rt.step_material
+        k = group_min_axes(conn, axes) if conn.shape[0] else 0
+        rt.step_factor = volumetric_step_factor(kind, params, curves, k)

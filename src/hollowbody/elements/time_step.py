@@ -31,7 +31,7 @@ def critical_time_step(length, c, l_visc, trd, q1, q2):
     """
     qv = 0.0
     if trd < 0.0:
-        qv = q2 * c - q1 * l_visc * trd
+        qv = q2 * c - 2.0 * q1 * l_visc * trd
     return length / (qv + math.sqrt(qv * qv + c * c))
 
 
