@@ -1,7 +1,10 @@
 """Critical time step of solid elements (LS-DYNA's rule with bulk viscosity).
 
-``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + Q1 l |tr D|`` for
-a compressing element (``tr D < 0``), else ``Q = 0``. ``L_e`` is the
+``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + 2 Q1 l |tr D|`` for
+a compressing element (``tr D < 0``), else ``Q = 0``: LS-DYNA's rule, with the
+tangent of the quadratic bulk viscosity ``q = rho l (Q1 l trD^2 - Q2 c trD)``
+(twice its secant ``Q1 l |tr D|``, which LS-DYNA writes): the explicit scheme's
+damping stability is set by the tangent (docs/elements.md, "Time step"). ``L_e`` is the
 characteristic length (V / A_max for hexahedra and wedges, the smallest
 altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
 length, ``c`` the material's current dilatational wave speed. The solver
