@@ -7,7 +7,9 @@ hexahedral blocks (nu 0.3 and 0.45), prints hollowbody's first step (what
 ``hollowbody check`` reports and the run takes) and LS-DYNA's rule for ELFORM 1
 hexahedra with TSSFAC 0.9: ``0.9 min(V / A_max) / c`` with the dilatational wave
 speed ``c = sqrt((K + 4G/3) / rho)`` at rest (no bulk-viscosity term), and
-their ratio. Cheap (no run): the decks are built and the forces at t = 0
+their ratio, and the step the restrained-axes factor would give
+(``volumetric_step_factor(..., min_axes=k)``, not the engine's default; see
+docs/elements.md, "Time step"). Cheap (no run): the decks are built and the forces at t = 0
 computed once.
 """
 
@@ -21,6 +23,11 @@ import numpy as np
 
 from hollowbody.api import load_model
 from hollowbody.elements.hex8_kinematics import canonical_connectivity
+from hollowbody.elements.solid_step_factor import (
+    group_min_axes,
+    restrained_axes,
+    volumetric_step_factor,
+)
 from hollowbody.elements.time_step import element_time_steps
 from hollowbody.io.keyword import (
     ControlTermination,
@@ -78,12 +85,18 @@ def main() -> None:
     for nu in (0.3, 0.45):
         model = load_model(elastic_block(out / f"elastic_{nu:g}.k", nu))
         rows.append((f"elastic block nu {nu:g}", model, model.materials[1]))
-    print(f"{'case':34s} {'hollowbody ms':>14s} {'LS-DYNA rule ms':>16s} {'ratio':>7s}")
+    print(f"{'case':34s} {'hollowbody ms':>14s} {'LS-DYNA rule ms':>16s} {'ratio':>7s} "
+          f"{'restrained ratio':>17s}")
     for name, model, mat in rows:
         ours = first_time_step(model, threads=1)["run_dt"]
         c = wave_speed(mat, model)
         ref = lsdyna_step(model, c)
-        print(f"{name:34s} {ours:14.4e} {ref:16.4e} {ours / ref:7.3f}")
+        conns = [np.asarray(g.conn) for g in model.solid_groups]
+        k = min(group_min_axes(cn, ax) for cn, ax in zip(conns, restrained_axes(conns)))
+        lone = volumetric_step_factor(mat.kind, mat.params, model.curves, 0)
+        relaxed = volumetric_step_factor(mat.kind, mat.params, model.curves, k)
+        print(f"{name:34s} {ours:14.4e} {ref:16.4e} {ours / ref:7.3f} "
+              f"{ours / ref * relaxed / lone:17.3f}")
 
 
 def wave_speed(mat, model) -> float:  # noqa: ANN001 - MaterialDef, Model

@@ -91,7 +91,7 @@ class SolidGroupRuntime:
     #: element forces f^n, read by the next call (energy of the step).
     STATE_FIELDS: tuple[str, ...] = (
         "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_hgmod",
-        "_fwork", "internal_energy", "hourglass_energy", "step_factor") + HISTORY_FIELDS
+        "_fwork", "internal_energy", "hourglass_energy") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
                  curves: dict[int, Curve], node_x0: np.ndarray) -> None:
@@ -116,9 +116,6 @@ class SolidGroupRuntime:
         self.stress = np.zeros((e, 6))
         self.internal_energy = 0.0
         self.hourglass_energy = 0.0
-        #: factor on the group's L_e / c step (set by the run's set-up, which sees the
-        #: neighbours; :mod:`hollowbody.elements.solid_step_factor`)
-        self.step_factor = 1.0
         self._lfac = np.where(self.shape == SHAPE_TET, 3.0, 1.0)
 
         law = SOLID_LAWS.get(self.kind)

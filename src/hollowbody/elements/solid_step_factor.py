@@ -20,19 +20,28 @@ k    mesh                       K >> G       nu = 0.3
 3    2 x 2 x 2 ... 4 x 4 x 4    0.815-0.844  0.937-0.970
 ===  =========================  ===========  ===========
 
-A lone element (k = 0) needs ``sqrt(M / max(M, 3K))`` (1 at nu = 0, 0.734 at
-nu = 0.3, 0.577 for rubber), its exact limit. The engine gives each group
-``gamma = 3 - k / 3`` for k <= 2 and 1.5 for k = 3 (k: the group's least
-restrained element, :func:`assign_step_factors`), which keeps
-``omega_max dt / 2 <= 0.96`` at TSSFAC 0.9 on every mesh above (0.86-0.90 for
-large rubber blocks, whose exact limit is 0.85 L_e / c) and long runs with
-random and alternating velocities, impacts and crushes stable with the default
-bulk viscosity (gamma = 2 at k = 2 diverged on a 2 x 2 x 1 rubber plate). It
-gives LS-DYNA's step to an elastic nu 0.3 block and 0.816 of it to a rubber
-block. LS-DYNA's rule (factor 1) is not stable for rubber: free rubber meshes
+The engine uses the lone-element bound ``sqrt(M / max(M, 3K))`` for every
+group (1 at nu = 0, 0.734 at nu = 0.3, 0.577 for rubber): it is a bound for
+any mesh (an assembled mesh's omega_max is below its elements' largest), and
+with TSSFAC 0.9 it keeps omega_max dt / 2 <= 0.9 on every mesh above (0.9 for
+the lone element, 0.58-0.86 for the others).
+LS-DYNA's rule (factor 1) is not stable for rubber: free rubber meshes
 diverge within 4-30 cycles at TSSFAC 0.9, with or without the bulk viscosity.
-The crushes need the bulk viscosity's tangent in the step
-(:mod:`hollowbody.elements.time_step`); see docs/elements.md, "Time step".
+
+The restrained-axes relaxation ``gamma = 3 - k / 3`` for k <= 2 (3, 2.67,
+2.33) and 1.5 for k = 3 (``min_axes``) is what the element allows in small
+strain: its omega_max dt / 2 stays <= 0.96 on the meshes above, and long runs
+with random and alternating velocities and small-strain impacts stay stable
+with the default bulk viscosity (gamma = 2 at k = 2 diverged on a 2 x 2 x 1
+rubber plate). It would give LS-DYNA's step to an elastic nu 0.3 block and
+0.816 of it to a rubber block (1.41 x the lone-element step). It is not the
+default, because at the larger step (a) the SOFT=1 contact of the soft-block
+verification lets nodes of a crushed fat block through a heavy plate (any
+factor above 0.65), (b) the elastic cube struck by a rigid plate gives back
+8.8 % more contact energy than it took (quality warning), and (c) a fat block
+slammed at 40 mm/ms onto a clamped face ends at energy ratio 1.46 (the
+lone-element step: 1.06; at 60 mm/ms the lone-element step reaches 1.54 too,
+so large compression of MAT_181 has its own limit, see docs/elements.md).
 Degenerate elements (wedges, tetrahedra) always have min_axes 0.
 """
 
@@ -119,21 +128,3 @@ def group_min_axes(conn: np.ndarray, axes: np.ndarray) -> int:
     if np.any(np.count_nonzero(np.diff(s, axis=1), axis=1) != 7):
         return 0
     return int(axes.min())
-
-
-def assign_step_factors(solids: list) -> None:
-    """Set ``step_factor`` of each solid group runtime from its alive elements.
-
-    solids: the runtimes of every deformable solid group of a model, each with
-    ``conn`` (e, 8), ``alive`` (e,) bool and ``step_material`` = (kind, params,
-    curves) as :func:`volumetric_step_factor` takes them. A face shared with an
-    alive element of any of the groups restrains it; called at set-up and again
-    when solids are eroded (a deleted neighbour frees the faces it covered).
-    """
-    if not solids:
-        return
-    conns = [np.asarray(rt.conn)[np.asarray(rt.alive)] for rt in solids]
-    for rt, conn, axes in zip(solids, conns, restrained_axes(conns)):
-        kind, params, curves = rt.step_material
-        k = group_min_axes(conn, axes) if conn.shape[0] else 0
-        rt.step_factor = volumetric_step_factor(kind, params, curves, k)

@@ -1,10 +1,7 @@
 """Critical time step of solid elements (LS-DYNA's rule with bulk viscosity).
 
-``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + 2 Q1 l |tr D|`` for
-a compressing element (``tr D < 0``), else ``Q = 0``: LS-DYNA's rule, with the
-tangent of the quadratic bulk viscosity ``q = rho l (Q1 l trD^2 - Q2 c trD)``
-(twice its secant ``Q1 l |tr D|``, which LS-DYNA writes): the explicit scheme's
-damping stability is set by the tangent (docs/elements.md, "Time step"). ``L_e`` is the
+``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + Q1 l |tr D|`` for
+a compressing element (``tr D < 0``), else ``Q = 0``. ``L_e`` is the
 characteristic length (V / A_max for hexahedra and wedges, the smallest
 altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
 length, ``c`` the material's current dilatational wave speed. The solver
@@ -34,7 +31,7 @@ def critical_time_step(length, c, l_visc, trd, q1, q2):
     """
     qv = 0.0
     if trd < 0.0:
-        qv = q2 * c - 2.0 * q1 * l_visc * trd
+        qv = q2 * c - q1 * l_visc * trd
     return length / (qv + math.sqrt(qv * qv + c * c))
 
 

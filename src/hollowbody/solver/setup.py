@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hollowbody.elements.solid_step_factor import assign_step_factors
+from hollowbody.elements.solid_step_factor import volumetric_step_factor
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
@@ -85,14 +85,6 @@ def _part_share(n: int, conn: np.ndarray, elem_mass: np.ndarray) -> PartShare:
     return PartShare(nodes=nodes, mass=m[nodes])
 
 
-def _solid_step_factors(model: Model, solids: list) -> None:
-    """Give each solid group runtime its factor on L_e / c (:func:`assign_step_factors`)."""
-    for rt in solids:
-        mat = model.material_of(rt.pid)
-        rt.step_material = (mat.kind, mat.params, model.curves)
-    assign_step_factors(solids)
-
-
 def assemble(model: Model) -> Assembly:
     """Build the runtime objects of ``model`` (raises DeckError for what cannot run)."""
     from hollowbody.contact import ContactRuntime
@@ -125,8 +117,10 @@ def assemble(model: Model) -> Assembly:
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
         rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
+        # the lone-element bound; why the restrained-axes relaxation is not used by
+        # default: hollowbody.elements.solid_step_factor
+        rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves)
         asm.elements.append(rt)
-    _solid_step_factors(model, asm.elements)
     for g in model.shell_groups:
         counts["shells"] += int(g.conn.shape[0])
         mat = model.material_of(g.pid)

@@ -26,7 +26,6 @@ import time
 
 import numpy as np
 
-from hollowbody.elements.solid_step_factor import assign_step_factors
 from hollowbody.solver.rigid_set import rigid_set
 
 NORMAL = "normal termination"
@@ -261,8 +260,6 @@ def _erode(plan, state, rt, small_step: bool) -> int:  # noqa: ANN001
     state.n_eroded += int(bad.size)
     if bad.size:
         rt.erode(bad)
-        if volume is not None:  # the neighbours of deleted solids lose a restraint
-            assign_step_factors([g for g in plan.elements if hasattr(g, "step_material")])
         for c in plan.contacts:  # their segments leave the contacts
             if hasattr(c, "deactivate_elements"):
                 c.deactivate_elements(rt.pid, rt.elem_ids[bad])

@@ -3,13 +3,11 @@
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from hollowbody.elements.solid_step_factor import (
-    assign_step_factors,
     group_min_axes,
     restrained_axes,
     volumetric_step_factor,
@@ -53,28 +51,3 @@ def test_factor_by_axes_elastic():
             math.sqrt(m_over_k / max(m_over_k, gamma)), rel=1e-12)
     assert volumetric_step_factor("elastic", {"E": 0.2, "PR": 0.0}, {}) == 1.0
     assert volumetric_step_factor("rigid", {}, {}) == 1.0
-
-
-def _group(conn: np.ndarray, params: dict) -> SimpleNamespace:
-    return SimpleNamespace(conn=conn, alive=np.ones(conn.shape[0], dtype=bool),
-                           step_material=("elastic", params, {}), step_factor=None)
-
-
-def test_assigned_factors_follow_the_alive_neighbours():
-    """Two groups of a 4 x 1 x 1 bar (2 + 2 elements): every element has a neighbour
-    along x (k = 1, faces shared across groups count). Deleting the bar's third element
-    (the second group's first) leaves the fourth with no neighbour (k = 0: the lone
-    factor for its group); the first group keeps k = 1 within itself."""
-    _, conn = block_mesh((4, 1, 1))
-    order = np.argsort(conn[:, 0])  # elements along x
-    conn = conn[order]
-    params = {"E": 1.0, "PR": 0.3}
-    a, b = _group(conn[:2], params), _group(conn[2:], params)
-    assign_step_factors([a, b])
-    k1 = volumetric_step_factor("elastic", params, {}, 1)
-    assert a.step_factor == pytest.approx(k1) and b.step_factor == pytest.approx(k1)
-    b.alive[0] = False  # element 3 of the bar eroded
-    assign_step_factors([a, b])
-    assert a.step_factor == pytest.approx(k1)
-    assert b.step_factor == pytest.approx(volumetric_step_factor("elastic", params, {}, 0))
-    assert b.step_factor < k1
