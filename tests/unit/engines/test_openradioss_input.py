@@ -28,7 +28,6 @@ from hollowbody.engines.radioss_deck import (
     rewrite_for_openradioss,
 )
 from hollowbody.engines.radioss_listing import parse_listing, read_listing
-from hollowbody.errors import DeckError
 from hollowbody.io.keyword import read_deck, write_deck
 from hollowbody.testing.decks import box_deck
 
