@@ -101,3 +101,19 @@ def histories(path: str | Path) -> dict[str, list[list[float]]]:
                 rows.append([float(t[i]), float(nid), *vals])
         out["nodout"] = rows
     return out
+
+
+def energies_at(path: str | Path, times: np.ndarray) -> dict[str, np.ndarray]:
+    """The time history's global hourglass and contact energies (J) at ``times`` (ms;
+    linear interpolation, NaN outside the history): ``{"hourglass [J]": ...,
+    "contact [J]": ...}``; a variable the file lacks is left out."""
+    names, data = read_th_csv(path)
+    out: dict[str, np.ndarray] = {}
+    if data.shape[0] == 0 or not names:
+        return out
+    t = data[:, 0]
+    for col, name in (("HOURGLASS ENERGY", "hourglass [J]"), ("CONTACT ENERGY", "contact [J]")):
+        if col in names:
+            v = data[:, names.index(col)]
+            out[name] = np.interp(times, t, v, left=math.nan, right=math.nan)
+    return out

@@ -19,6 +19,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from hollowbody.engines.commands import (
     RunPlan,
     lsdyna_memory,
@@ -323,9 +325,15 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     rows: dict[str, list[list[float]]] = {"glstat": lst.rows}
     th = out / f"{root}T01.csv"
     if th.is_file():
-        from hollowbody.engines.radioss_th import histories
+        from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
+        from hollowbody.engines.radioss_th import energies_at, histories
 
         rows.update(histories(th))
+        if lst.rows:  # the listing's table lacks the hourglass and contact energies
+            g = np.array(lst.rows, dtype=float)
+            for name, v in energies_at(th, g[:, GLSTAT_ORDER.index("time [ms]")]).items():
+                g[:, GLSTAT_ORDER.index(name)] = v
+            rows["glstat"] = g.tolist()
         notes.append(f"rcforc.csv and nodout.csv from the time history {th.name}")
     else:
         notes.append(f"no time history {th.name} (th_to_csv missing or the run stopped "

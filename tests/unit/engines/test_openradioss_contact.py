@@ -232,3 +232,20 @@ def test_time_history_becomes_rcforc_and_nodout_rows(tmp_path):
     # groups that are absent leave their history out
     _th_file(tmp_path / "e.csv", np.array([[0.0, 1.0, 2.0], [1.0, 1.0, 2.0], [2.0, 0, 0]]), [])
     assert histories(tmp_path / "e.csv") == {}
+
+
+def test_hourglass_and_contact_energies_interpolated_at_the_listing_times(tmp_path):
+    from hollowbody.engines.radioss_th import energies_at
+
+    t = np.array([0.0, 0.1, 0.2, 0.3])
+    rows = np.column_stack([t, 1 + t, 2 + t, 10 * t, 20 * t])
+    path = tmp_path / "g.csv"
+    flat = [f"{v:e}" for v in rows.reshape(-1)][:-1]
+    path.write_text('"time","INTERNAL ENERGY","KINETIC ENERGY","CONTACT ENERGY",'
+                    '"HOURGLASS ENERGY"\n' + "\n".join(
+                        ",".join(flat[k:k + 5]) for k in range(0, len(flat), 5)))
+    e = energies_at(path, np.array([0.05, 0.15, 0.5]))
+    # linear in time: exact at the midpoints; beyond the history (last row dropped): NaN
+    assert e["contact [J]"][:2] == pytest.approx([0.5, 1.5], rel=1e-6)
+    assert e["hourglass [J]"][:2] == pytest.approx([1.0, 3.0], rel=1e-6)
+    assert np.isnan(e["contact [J]"][2])
