@@ -111,7 +111,8 @@ def _radioss_root(path: Path) -> Path:
 def _radioss_env(root: Path, arch: str, base: Mapping[str, str]) -> dict[str, str]:
     """Variables OpenRadioss's executables read (its INSTALL notes): the folder of the
     input configuration files, the OpenMP stack size, and the shared libraries of a
-    release package (``lib``) or a source build (``extlib/hm_reader``, ``extlib/h3d``)."""
+    release package (``lib``) or a source build (``extlib/hm_reader``, ``extlib/h3d``,
+    and ``exec`` where the open reader's library is built)."""
     plat = "win64" if arch == "win64" else ("linuxa64" if arch == "linuxa64" else "linux64")
     env = {OPENRADIOSS_ENV: str(root), "OMP_STACKSIZE": base.get("OMP_STACKSIZE", "400m")}
     if (root / "hm_cfg_files").is_dir():
@@ -120,6 +121,8 @@ def _radioss_env(root: Path, arch: str, base: Mapping[str, str]) -> dict[str, st
     if h3d.is_dir():
         env["RAD_H3D_PATH"] = str(h3d)
     libs = [p for p in (root / "lib", root / "extlib" / "hm_reader" / plat, h3d) if p.is_dir()]
+    if any((root / "exec").glob("libopen_reader*")):  # a source build with the open reader
+        libs.insert(0, root / "exec")
     if libs and arch != "win64":
         old = base.get("LD_LIBRARY_PATH", "")
         env["LD_LIBRARY_PATH"] = os.pathsep.join([*map(str, libs), *([old] if old else [])])
