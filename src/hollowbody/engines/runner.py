@@ -317,8 +317,11 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     lst = read_listing(out / f"{root}_0001.out", out / f"{root}_engine.log")
     status, reason = lst.status, lst.reason
     if codes.get("starter", 0) != 0:
+        from hollowbody.engines.radioss_listing import starter_errors
+
+        errs = starter_errors(out / f"{root}_0000.out")
         status, reason = ERROR, (f"the starter stopped (exit code {codes['starter']}); see "
-                                 f"{root}_0000.out")
+                                 f"{root}_0000.out" + (": " + " | ".join(errs) if errs else ""))
     elif status == UNKNOWN and codes.get("engine", 0) != 0:
         status, reason = ERROR, f"the engine stopped (exit code {codes['engine']})"
     notes = list(prep.notes)

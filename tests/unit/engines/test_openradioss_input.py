@@ -177,3 +177,24 @@ def test_a_finished_openradioss_run_folder_becomes_hollowbodys_files(tmp_path):
     # a starter that stopped is an error termination pointing at its listing
     s = _collect_radioss(prep, 0.1, {"starter": 2}, [])
     assert s["status"] == ERROR and "box_0000.out" in s["reason"]
+
+
+def test_the_starters_errors_are_read_from_its_listing(tmp_path):
+    """A starter listing (SYNTHETIC, in the layout of the messages OpenRadioss's starter
+    writes to ROOT_0000.out) gives the first errors, one line each."""
+    from hollowbody.engines.radioss_listing import starter_errors
+
+    (tmp_path / "d_0000.out").write_text(
+        "   INTERFACE NUMBER :         1 tissue-impactor\n\n"
+        "ERROR ID :   2087\n** REFERENCE TO UNDEFINED GROUP ID\nDESCRIPTION :  \n"
+        "   -- INTER ID   : 1\n   -- INTER TITLE: tissue-impactor\n"
+        "   REFERENCE TO UNDEFINED GROUP ID 5\n\n    TYPE==25  MUTI-TYPE IMPACTING\n\n"
+        "WARNING ID :    343\n** WARNING: INITIAL PENETRATIONS IN INTERFACE\n\n"
+        "ERROR ID :   1000\n** ERROR IN INTERFACE DEFINITION\nDESCRIPTION :  \n"
+        "   IN INTERFACE NB 1\n   Surf_1 DOES NOT EXIST\n\n")
+    errs = starter_errors(tmp_path / "d_0000.out")
+    assert errs == ["error 2087: REFERENCE TO UNDEFINED GROUP ID; -- INTER ID   : 1; "
+                    "-- INTER TITLE: tissue-impactor; REFERENCE TO UNDEFINED GROUP ID 5",
+                    "error 1000: ERROR IN INTERFACE DEFINITION; IN INTERFACE NB 1; "
+                    "Surf_1 DOES NOT EXIST"]
+    assert starter_errors(tmp_path / "missing.out") == []
