@@ -32,7 +32,7 @@ from hollowbody.engines.radioss_contact import TH_INTER_TITLE, TH_NODE_TITLE
 
 #: Sign that turns OpenRadioss's contact force (FN + FT) into the force on the master
 #: side, checked on a real run against the impactor's momentum (docs/engines.md).
-MASTER_SIGN = 1.0
+MASTER_SIGN = -1.0
 
 
 def read_th_csv(path: str | Path) -> tuple[list[str], np.ndarray]:

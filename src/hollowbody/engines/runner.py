@@ -298,6 +298,30 @@ def execute(prep: Prepared, quiet: bool = True) -> dict:
     return _collect_lsdyna(prep, wall, codes, commands)
 
 
+def _with_th_energies(g: np.ndarray, extra: dict[str, np.ndarray]) -> list[list[float]]:
+    """glstat rows (n, len(GLSTAT_ORDER)) of the listing with the time history's
+    hourglass and contact energies: the total is then hollowbody's (kinetic + internal
+    + hourglass + contact; OpenRadioss's listing counts neither in its internal
+    energy) and the ratio total / (initial total + external work) is recomputed.
+    Rows where either energy is unknown (NaN) keep the listing's total and ratio."""
+    from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
+
+    col = GLSTAT_ORDER.index
+    for name, v in extra.items():
+        g[:, col(name)] = v
+    hg, ce = g[:, col("hourglass [J]")], g[:, col("contact [J]")]
+    ok = np.isfinite(hg) & np.isfinite(ce)
+    if ok.any():
+        total = g[:, col("kinetic [J]")] + g[:, col("internal [J]")] + hg + ce
+        e0 = total[np.argmax(ok)]
+        denom = e0 + g[:, col("external_work [J]")]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(denom != 0.0, total / denom, np.nan)
+        g[ok, col("total [J]")] = total[ok]
+        g[ok, col("energy_ratio")] = ratio[ok]
+    return g.tolist()
+
+
 def _starter_engine_file(out: Path, name: str) -> Path | None:
     """The engine file the starter wrote: ``name``, or (a keyword deck included in a
     native starter file) the other ``*_0001.rad`` of the folder; None when none."""
@@ -328,15 +352,12 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     rows: dict[str, list[list[float]]] = {"glstat": lst.rows}
     th = out / f"{root}T01.csv"
     if th.is_file():
-        from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
         from hollowbody.engines.radioss_th import energies_at, histories
 
         rows.update(histories(th))
         if lst.rows:  # the listing's table lacks the hourglass and contact energies
-            g = np.array(lst.rows, dtype=float)
-            for name, v in energies_at(th, g[:, GLSTAT_ORDER.index("time [ms]")]).items():
-                g[:, GLSTAT_ORDER.index(name)] = v
-            rows["glstat"] = g.tolist()
+            rows["glstat"] = _with_th_energies(np.array(lst.rows, dtype=float),
+                                               energies_at(th, np.array(lst.rows)[:, 0]))
         notes.append(f"rcforc.csv and nodout.csv from the time history {th.name}")
     else:
         notes.append(f"no time history {th.name} (th_to_csv missing or the run stopped "
