@@ -332,7 +332,7 @@ def _starter_engine_file(out: Path, name: str) -> Path | None:
 
 
 def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -> dict:
-    from hollowbody.engines.lsdyna_status import ERROR, UNKNOWN
+    from hollowbody.engines.lsdyna_status import ERROR, NORMAL, UNKNOWN
     from hollowbody.engines.radioss_listing import read_listing
     from hollowbody.engines.results import write_histories, write_summary
 
@@ -366,8 +366,11 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     vtk = sorted(glob.glob(str(out / f"{root}A*.vtk")))
     if vtk:
         _write_pvd(out, [Path(v).name for v in vtk], prep)
+    end = lst.end_time_ms
+    if status == NORMAL and prep.end_time_ms is not None:
+        end = prep.end_time_ms  # the listing's table stops at its last /PRINT cycle
     return write_summary(out, engine="openradioss", version=lst.version, status=status,
-                         reason=reason, where=lst.where, end_time_ms=lst.end_time_ms,
+                         reason=reason, where=lst.where, end_time_ms=end,
                          requested_end_time_ms=prep.end_time_ms, cycles=lst.cycles,
                          wall_seconds=wall, glstat=lst.rows, commands=commands, notes=notes)
 
