@@ -30,7 +30,9 @@ animation intervals (``/TFILE``, ``/ANIM/DT`` from *DATABASE_GLSTAT and
 *DATABASE_BINARY_D3PLOT), the listing print interval (``/PRINT``), and DTMIN
 (LS-DYNA: stop when the step falls below DTMIN x the initial step; the
 translation maps it only through DT2MS) as ``/DT/BRICK/STOP`` and
-``/DT/SHELL/STOP`` with TSSFAC and the absolute minimum step.
+``/DT/SHELL/STOP`` with TSSFAC and the absolute minimum step (``/DEL`` instead
+of ``/STOP`` with *CONTROL_TIMESTEP ERODE = 1: LS-DYNA then deletes the element
+whose step falls below DTMIN instead of stopping).
 """
 
 from __future__ import annotations
@@ -71,13 +73,15 @@ DEFAULT_STATE_COUNT = 20
 @dataclass(frozen=True)
 class EngineSettings:
     """What the engine file sets: end time (ms), time-history and animation intervals
-    (ms), TSSFAC, the absolute minimum step (ms; 0: none)."""
+    (ms), TSSFAC, the absolute minimum step (ms; 0: none) and whether an element
+    below it is deleted (ERODE = 1) instead of stopping the run."""
 
     end_time: float
     history_dt: float
     anim_dt: float
     tssfac: float = 0.9
     dtmin_abs: float = 0.0
+    erode: bool = False
 
 
 def starter_input(deck_path: Path, out_dir: Path) -> Path:
@@ -167,7 +171,8 @@ def engine_settings(deck: Deck, dt0: float | None = None) -> EngineSettings:
         history_dt=hist or (end / DEFAULT_HISTORY_COUNT if end > 0 else 0.0),
         anim_dt=anim or (end / DEFAULT_STATE_COUNT if end > 0 else 0.0),
         tssfac=float(ts.tssfac or 0.9),
-        dtmin_abs=dtmin * dt0 if (dt0 and dtmin > 0.0) else 0.0)
+        dtmin_abs=dtmin * dt0 if (dt0 and dtmin > 0.0) else 0.0,
+        erode=bool(ts.erode))
 
 
 def _num(v: float) -> str:
@@ -186,7 +191,8 @@ def engine_file_text(root: str, s: EngineSettings, source: str = "") -> str:
              f"/PRINT/-{PRINT_CYCLES}"]
     if s.dtmin_abs > 0.0:
         for eltyp in ("BRICK", "SHELL"):
-            lines += [f"/DT/{eltyp}/STOP", _num(s.tssfac) + _num(s.dtmin_abs)]
+            lines += [f"/DT/{eltyp}/{'DEL' if s.erode else 'STOP'}",
+                      _num(s.tssfac) + _num(s.dtmin_abs)]
     return "\n".join(lines) + "\n"
 
 

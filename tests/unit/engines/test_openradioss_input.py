@@ -131,6 +131,13 @@ def test_dtmin_becomes_an_absolute_minimum_step(tmp_path):
     assert body[body.index("/DT/SHELL/STOP") + 1] == body[i + 1]
     # without the initial step there is no minimum
     assert engine_settings(deck).dtmin_abs == 0.0
+    # ERODE = 1: the element whose step falls below DTMIN is deleted, the run goes on
+    from hollowbody.io.keyword import ControlTimestep
+
+    deck.add(ControlTimestep(tssfac=0.9, erode=1))
+    body = engine_file_text("box", engine_settings(deck, dt0=2.0e-4)).splitlines()
+    assert "/DT/BRICK/DEL" in body and "/DT/SHELL/DEL" in body
+    assert "/DT/BRICK/STOP" not in body
     # defaults when the deck asks for no output: end / 500 and end / 20
     assert (s.history_dt, s.anim_dt) == (1.0 / 500, 1.0 / 20)
 
