@@ -54,6 +54,9 @@ def _row(folder: Path, structure: str, engine: str) -> dict:
         dts = gl["dt [ms]"][gl["dt [ms]"] > 0.0]
         if dts.size:
             row["dt0_ms"] = float(dts[0])
+        ratio = gl["energy_ratio"][np.isfinite(gl["energy_ratio"])]
+        if ratio.size:  # the run's glstat.csv, the same for every engine
+            row["energy_ratio"] = float(ratio[-1])
     return row
 
 

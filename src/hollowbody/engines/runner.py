@@ -372,7 +372,8 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     return write_summary(out, engine="openradioss", version=lst.version, status=status,
                          reason=reason, where=lst.where, end_time_ms=end,
                          requested_end_time_ms=prep.end_time_ms, cycles=lst.cycles,
-                         wall_seconds=wall, glstat=lst.rows, commands=commands, notes=notes)
+                         wall_seconds=wall, glstat=rows["glstat"], commands=commands,
+                         notes=notes)
 
 
 def _write_pvd(out: Path, files: list[str], prep: Prepared) -> None:
