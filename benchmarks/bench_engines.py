@@ -81,6 +81,7 @@ def _plot(rows: list[dict], out: Path, png: Path) -> None:
         f = cfc_filter(fd[:, 0], fd[:, 2], 600.0)
         ax.plot(fd[:, 1], f, "-" if r["engine"] == "hollowbody" else "--",
                 label=f"{r['structure']}, {r['engine']}")
+    ax.set_xlim(left=-5.0)  # the rebound beyond the start point is left out
     ax.set_xlabel("impactor displacement [mm]")
     ax.set_ylabel("contact force, CFC 600 [kN]")
     ax.set_title("muscle block, 40 km/h: hollowbody and OpenRadioss")
