@@ -15,9 +15,12 @@ asks for the groups :data:`~hollowbody.engines.radioss_contact.TH_INTER_TITLE`
 :data:`~hollowbody.engines.radioss_contact.TH_NODE_TITLE` (DX DY DZ VX VY VZ of
 the history nodes). Units are the deck's (kN, mm, mm/ms).
 
-Contact force: normal + tangential. OpenRadioss reports the force of a contact
-on its main (master) side; the slave side gets the opposite force (the penalty
-forces act in pairs), so ``slave = -master`` (see :data:`MASTER_SIGN`).
+Contact force: normal + tangential. OpenRadioss's FN + FT of a TYPE25
+contact is the force on its secondary (slave) side: on a real run the
+impulse of minus that force on the rigid impactor (the master side) equals the
+impactor's momentum change within 0.4 %. The master side gets the opposite
+force (the penalty forces act in pairs): ``master = MASTER_SIGN (FN + FT)``,
+``slave = -master``.
 """
 
 from __future__ import annotations
@@ -30,8 +33,8 @@ import numpy as np
 
 from hollowbody.engines.radioss_contact import TH_INTER_TITLE, TH_NODE_TITLE
 
-#: Sign that turns OpenRadioss's contact force (FN + FT) into the force on the master
-#: side, checked on a real run against the impactor's momentum (docs/engines.md).
+#: Sign that turns OpenRadioss's contact force (FN + FT, the slave side's) into the
+#: force on the master side, checked on a real run against the impactor's momentum.
 MASTER_SIGN = -1.0
 
 
