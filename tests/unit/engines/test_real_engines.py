@@ -2,8 +2,8 @@
 
 OpenRadioss is found through OPENRADIOSS_PATH or the PATH, LS-DYNA through
 LSDYNA or the PATH (docs/engines.md). The first deck is the worked example
-``examples/loads/block_drop.k`` (no contact): a block dropped onto a rigid wall for 60 ms. The run must
-end normally at the deck's end time and write hollowbody's glstat.csv and
+``examples/loads/block_drop.k`` (no contact): a block dropped onto a rigid wall
+for 60 ms. The run must end normally at the deck's end time and write hollowbody's glstat.csv and
 summary.json; its energy balance holds in free fall (kinetic energy = work of
 gravity) and the rigid wall only takes energy out (OpenRadioss counts the
 energy a kinematic rigid wall removes nowhere: measured 0.905 at the end).
