@@ -95,8 +95,12 @@ def _check_counts(np_: int, threads: int) -> None:
 
 
 def radioss_root(deck: Path) -> str:
-    """OpenRadioss's run name of a keyword deck: its file name without extension."""
-    return deck.stem
+    """OpenRadioss's run name of a starter input: ``ROOT`` of a native ``ROOT_0000.rad``,
+    a keyword deck's file name without extension."""
+    name = Path(deck).name
+    if name.endswith("_0000.rad"):
+        return name[:-len("_0000.rad")]
+    return Path(deck).stem
 
 
 def openradioss_plan(install: OpenRadiossInstall, deck: Path, workdir: Path, np_: int = 1,
@@ -115,8 +119,9 @@ def openradioss_plan(install: OpenRadiossInstall, deck: Path, workdir: Path, np_
     env["OMP_NUM_THREADS"] = str(threads)
     starter = Command("starter", str(install.starter), ("-i", deck.name, "-np", str(np_)),
                       workdir, env, stdout=f"{root}_starter.log")
-    if np_ == 1:
-        engine = Command("engine", str(install.engine), ("-i", engine_file), workdir, env,
+    if np_ == 1:  # the OpenMP engine, else the MPI one started alone (one domain)
+        exe = install.engine if install.engine is not None else install.engine_mpi
+        engine = Command("engine", str(exe), ("-i", engine_file), workdir, env,
                          stdout=f"{root}_engine.log")
     else:
         if install.engine_mpi is None:

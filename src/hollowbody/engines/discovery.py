@@ -79,8 +79,10 @@ def find_mpirun(env: Mapping[str, str] | None = None) -> str | None:
 class OpenRadiossInstall:
     """An OpenRadioss installation: its root folder and executables.
 
-    engine_mpi, th_to_csv, anim_to_vtk: None when the installation lacks them
-    (an OpenMP-only build has no MPI engine); env: variables the executables
+    engine, engine_mpi, th_to_csv, anim_to_vtk: None when the installation lacks
+    them (an OpenMP-only build has no MPI engine, an MPI-only source build no
+    OpenMP-only engine: one domain then runs on the MPI engine); env: variables the
+    executables
     need (``RAD_CFG_PATH``, ``OMP_STACKSIZE``, library path), set on top of the
     caller's environment.
     """
@@ -88,7 +90,7 @@ class OpenRadiossInstall:
     root: Path
     arch: str
     starter: Path
-    engine: Path
+    engine: Path | None
     engine_mpi: Path | None = None
     th_to_csv: Path | None = None
     anim_to_vtk: Path | None = None
@@ -109,7 +111,8 @@ def _radioss_root(path: Path) -> Path:
 def _radioss_env(root: Path, arch: str, base: Mapping[str, str]) -> dict[str, str]:
     """Variables OpenRadioss's executables read (its INSTALL notes): the folder of the
     input configuration files, the OpenMP stack size, and the shared libraries of a
-    release package (``lib``) or a source build (``extlib/hm_reader``, ``extlib/h3d``)."""
+    release package (``lib``) or a source build (``extlib/hm_reader``, ``extlib/h3d``,
+    and ``exec`` where the open reader's library is built)."""
     plat = "win64" if arch == "win64" else ("linuxa64" if arch == "linuxa64" else "linux64")
     env = {OPENRADIOSS_ENV: str(root), "OMP_STACKSIZE": base.get("OMP_STACKSIZE", "400m")}
     if (root / "hm_cfg_files").is_dir():
@@ -118,6 +121,8 @@ def _radioss_env(root: Path, arch: str, base: Mapping[str, str]) -> dict[str, st
     if h3d.is_dir():
         env["RAD_H3D_PATH"] = str(h3d)
     libs = [p for p in (root / "lib", root / "extlib" / "hm_reader" / plat, h3d) if p.is_dir()]
+    if any((root / "exec").glob("libopen_reader*")):  # a source build with the open reader
+        libs.insert(0, root / "exec")
     if libs and arch != "win64":
         old = base.get("LD_LIBRARY_PATH", "")
         env["LD_LIBRARY_PATH"] = os.pathsep.join([*map(str, libs), *([old] if old else [])])
@@ -162,14 +167,15 @@ def find_openradioss(path: str | Path | None = None, env: Mapping[str, str] | No
 
     starter = pick(starter_name)
     engine = pick(f"engine_{arch}{sp}{ext}")
-    missing = [n for n, p in ((starter_name, starter), (f"engine_{arch}{sp}{ext}", engine))
-               if p is None]
+    engine_mpi = pick(f"engine_{arch}{_mpi_suffix(arch)}{sp}{ext}")
+    missing = [n for n, p in ((starter_name, starter),
+                              (f"engine_{arch}{sp}{ext}", engine or engine_mpi)) if p is None]
     if missing:
         raise EngineNotFound(f"OpenRadioss at {root} ({'; '.join(looked)}) has no "
                              f"{' nor '.join(missing)} in {exec_dir}")
     return OpenRadiossInstall(
         root=root, arch=arch, starter=starter, engine=engine,
-        engine_mpi=pick(f"engine_{arch}{_mpi_suffix(arch)}{sp}{ext}"),
+        engine_mpi=engine_mpi,
         th_to_csv=pick(f"th_to_csv_{arch}{ext}"), anim_to_vtk=pick(f"anim_to_vtk_{arch}{ext}"),
         mpirun=find_mpirun(env), env=_radioss_env(root, arch, env))
 

@@ -1,23 +1,25 @@
 """The input OpenRadioss gets from a hollowbody deck.
 
 Choice (docs/engines.md, "OpenRadioss: the deck it gets"): the starter reads
-the keyword deck itself, rewritten; the engine reads an engine file written
-here. OpenRadioss's keyword translation runs decks without contacts to normal
-termination, so the element, material, part, load and initial-condition
-keywords go through it unchanged (one translation, OpenRadioss's own, rather
-than a second one of ours). The rewrite only does what the translation does
-not do as LS-DYNA does:
+a native starter file ``ROOT_0000.rad`` that includes the keyword deck
+(``/INCLUDE_LS-DYNA``), rewritten, and adds native options for what the
+keyword translation does not run: the contacts (``/SURF/PART`` +
+``/INTER/TYPE25``, :mod:`hollowbody.engines.radioss_contact`) and the time
+history of the contacts and the history nodes (``/TH/INTER``, ``/TH/NODE``). The
+element, material, part, load and initial-condition keywords go through
+OpenRadioss's own translation unchanged (one translation, OpenRadioss's own,
+rather than a second one of ours). The rewrite of the keyword deck only does
+what the translation does not do as LS-DYNA does:
 
 - includes are written inline (one file: ``*INCLUDE_PATH`` folders and relative
   include names then mean nothing to the starter);
-- ``*CONTROL_CONTACT`` is left out (the translation ignores it; hollowbody's
-  contact defaults are LS-DYNA's, which OpenRadioss does not apply either) and
-  said so;
-- ``*CONTACT_...`` is refused with a clear error: OpenRadioss's starter stops
-  on every contact definition of our decks (its error 2087, "reference to
-  undefined group", where it turns part and segment sets into its groups).
-  Decks with contacts need native starter input (``/SURF/PART`` +
-  ``/INTER/TYPE25``), which is not written yet.
+- ``*CONTROL_CONTACT`` is left out (the translation ignores it; its SLSFAC goes
+  into the native contacts) and said so;
+- ``*CONTACT_...`` and ``*DATABASE_HISTORY_NODE(_SET)`` are left out of the
+  keyword file and written natively (the starter stops on the translation of
+  every contact of our decks: its error 2087, "reference to undefined group",
+  where it turns part and segment sets into its groups); tied contacts are
+  refused with a clear error.
 
 The engine file ``ROOT_0001.rad`` (OpenRadioss's engine input) is the one the
 starter derives from the deck, merged after the starter with hollowbody's
@@ -28,7 +30,9 @@ animation intervals (``/TFILE``, ``/ANIM/DT`` from *DATABASE_GLSTAT and
 *DATABASE_BINARY_D3PLOT), the listing print interval (``/PRINT``), and DTMIN
 (LS-DYNA: stop when the step falls below DTMIN x the initial step; the
 translation maps it only through DT2MS) as ``/DT/BRICK/STOP`` and
-``/DT/SHELL/STOP`` with TSSFAC and the absolute minimum step.
+``/DT/SHELL/STOP`` with TSSFAC and the absolute minimum step (``/DEL`` instead
+of ``/STOP`` with *CONTROL_TIMESTEP ERODE = 1: LS-DYNA then deletes the element
+whose step falls below DTMIN instead of stopping).
 """
 
 from __future__ import annotations
@@ -36,17 +40,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from hollowbody.build.common import item_error
+import numpy as np
+
+from hollowbody.engines.radioss_contact import (
+    contact_items,
+    native_contact_lines,
+    starter_file_text,
+)
 from hollowbody.io.keyword import (
-    Contact,
     ControlContact,
     ControlTermination,
     ControlTimestep,
     DatabaseAscii,
     DatabaseBinaryD3plot,
+    DatabaseHistoryNode,
+    DatabaseHistoryNodeSet,
     Deck,
     RawKeyword,
-    TiedContact,
+    SetNodeList,
+    SetNodeListGenerate,
     read_deck,
     write_deck,
 )
@@ -61,51 +73,74 @@ DEFAULT_STATE_COUNT = 20
 @dataclass(frozen=True)
 class EngineSettings:
     """What the engine file sets: end time (ms), time-history and animation intervals
-    (ms), TSSFAC, the absolute minimum step (ms; 0: none)."""
+    (ms), TSSFAC, the absolute minimum step (ms; 0: none) and whether an element
+    below it is deleted (ERODE = 1) instead of stopping the run."""
 
     end_time: float
     history_dt: float
     anim_dt: float
     tssfac: float = 0.9
     dtmin_abs: float = 0.0
+    erode: bool = False
 
 
-def _contact_items(deck: Deck) -> list:
-    items = [*deck.of_type(Contact), *deck.of_type(TiedContact)]
-    items += [i for i in deck.iter_items()
-              if isinstance(i, RawKeyword) and i.keyword.upper().startswith("CONTACT")]
-    return items
+def starter_input(deck_path: Path, out_dir: Path) -> Path:
+    """The file OpenRadioss's starter reads for ``deck_path`` written into ``out_dir``:
+    ``out_dir/ROOT_0000.rad`` (ROOT: the deck's name)."""
+    return Path(out_dir) / f"{Path(deck_path).stem}_0000.rad"
 
 
-def check_for_openradioss(deck: Deck) -> None:
-    """DeckError (file, line, keyword) for what OpenRadioss's keyword translation
-    refuses: a contact definition."""
-    contacts = _contact_items(deck)
-    if contacts:
-        raise item_error(contacts[0], "OpenRadioss's starter refuses the contacts of "
-                         "LS-DYNA keyword decks (its error 2087, reference to undefined "
-                         "group); run this deck with --engine hollowbody or lsdyna "
-                         "(docs/engines.md)")
+def check_for_openradioss(deck: Deck) -> list[str]:
+    """DeckError (file, line, keyword) for what is not written for OpenRadioss: tied
+    contacts, contacts on sets of a kind not written, undefined sets. Returns the
+    notes on the contacts written natively."""
+    return native_contact_lines(deck, [])[1]
+
+
+def history_nodes(deck: Deck) -> list[int]:
+    """The deck's history nodes (*DATABASE_HISTORY_NODE and the nodes of the sets of
+    *DATABASE_HISTORY_NODE_SET), in order, each once."""
+    sets = {s.sid: np.asarray(s.nodes, np.int64) for s in deck.of_type(SetNodeList)}
+    sets.update({s.sid: s.expand() for s in deck.of_type(SetNodeListGenerate)})
+    out: list[int] = []
+    for item in deck.of_type(DatabaseHistoryNode):
+        out += [int(i) for i in np.asarray(item.ids).reshape(-1)]
+    for item in deck.of_type(DatabaseHistoryNodeSet):
+        for sid in np.asarray(item.ids).reshape(-1):
+            out += [int(i) for i in sets.get(int(sid), [])]
+    return list(dict.fromkeys(i for i in out if i > 0))
 
 
 def rewrite_for_openradioss(deck_path: Path, out: Path) -> tuple[Path, list[str]]:
-    """Write the keyword deck OpenRadioss's starter reads to ``out`` (a .k file);
-    returns it and the notes on what was changed. DeckError when the deck holds
-    what OpenRadioss cannot run (:func:`check_for_openradioss`)."""
+    """Write the input of OpenRadioss's starter: the keyword deck ``out`` (a .k file,
+    rewritten) and the native starter file ``ROOT_0000.rad`` next to it that includes
+    it and holds the contacts and history groups (:func:`starter_input`); returns the
+    starter file and the notes on what was changed. DeckError when the deck holds what
+    is not written for OpenRadioss (:func:`check_for_openradioss`)."""
     deck = read_deck(deck_path)
-    check_for_openradioss(deck)
-    notes: list[str] = []
+    nodes = history_nodes(deck)
+    contact_lines, notes = native_contact_lines(deck, nodes)
     if deck.includes():
         notes.append(f"{len(deck.includes())} include(s) written inline")
     dropped = _drop(deck, lambda i: isinstance(i, ControlContact))
     if dropped:
-        notes.append("*CONTROL_CONTACT left out (OpenRadioss's translation ignores it)")
+        notes.append("*CONTROL_CONTACT left out (OpenRadioss's translation ignores it; "
+                     "SLSFAC is in the native contacts)")
     paths = _drop(deck, lambda i: isinstance(i, RawKeyword)
                   and i.keyword.upper().startswith("INCLUDE_PATH"))
     if paths:
         notes.append("*INCLUDE_PATH left out (includes written inline)")
+    contacts = {id(i) for i in contact_items(deck)}
+    n_contacts = _drop(deck, lambda i: id(i) in contacts)
+    if n_contacts:
+        notes.append(f"{n_contacts} *CONTACT_ left out of the keyword file (native "
+                     "/INTER/TYPE25 in the starter file)")
+    _drop(deck, lambda i: isinstance(i, (DatabaseHistoryNode, DatabaseHistoryNodeSet)))
+    out = Path(out)
     write_deck(deck, out, flatten=True)
-    return out, notes
+    starter = starter_input(out, out.parent)
+    starter.write_text(starter_file_text(out.stem, out.name, contact_lines, deck.title))
+    return starter, notes
 
 
 def _drop(deck: Deck, pred) -> int:
@@ -136,7 +171,8 @@ def engine_settings(deck: Deck, dt0: float | None = None) -> EngineSettings:
         history_dt=hist or (end / DEFAULT_HISTORY_COUNT if end > 0 else 0.0),
         anim_dt=anim or (end / DEFAULT_STATE_COUNT if end > 0 else 0.0),
         tssfac=float(ts.tssfac or 0.9),
-        dtmin_abs=dtmin * dt0 if (dt0 and dtmin > 0.0) else 0.0)
+        dtmin_abs=dtmin * dt0 if (dt0 and dtmin > 0.0) else 0.0,
+        erode=bool(ts.erode))
 
 
 def _num(v: float) -> str:
@@ -155,7 +191,8 @@ def engine_file_text(root: str, s: EngineSettings, source: str = "") -> str:
              f"/PRINT/-{PRINT_CYCLES}"]
     if s.dtmin_abs > 0.0:
         for eltyp in ("BRICK", "SHELL"):
-            lines += [f"/DT/{eltyp}/STOP", _num(s.tssfac) + _num(s.dtmin_abs)]
+            lines += [f"/DT/{eltyp}/{'DEL' if s.erode else 'STOP'}",
+                      _num(s.tssfac) + _num(s.dtmin_abs)]
     return "\n".join(lines) + "\n"
 
 

@@ -119,3 +119,32 @@ def read_listing(*paths: str | Path) -> RadiossListing:
     texts = [Path(p).read_text(encoding="latin-1", errors="replace")
              for p in paths if Path(p).is_file()]
     return parse_listing("\n".join(texts))
+
+
+def starter_errors(path: str | Path, limit: int = 3) -> list[str]:
+    """The first ``limit`` errors of a starter listing (``ROOT_0000.out``), each as one
+    line: ``error N: title; description lines`` (the message ends at the first blank
+    line after its description); an empty list when there is none or no file."""
+    p = Path(path)
+    if not p.is_file():
+        return []
+    lines = p.read_text(encoding="latin-1", errors="replace").splitlines()
+    out: list[str] = []
+    for k, line in enumerate(lines):
+        m = re.match(r"\s*ERROR ID\s*:\s*(\d+)", line)
+        if not m:
+            continue
+        body: list[str] = []
+        described = False
+        for nxt in lines[k + 1:k + 12]:
+            text = nxt.strip().strip("*").strip()
+            if re.match(r"\s*(ERROR|WARNING) ID\s*:", nxt) or (described and not text):
+                break  # the next message, or the blank line that ends this one
+            if text.startswith("DESCRIPTION"):
+                described = True
+            elif text:
+                body.append(text)
+        out.append(f"error {m.group(1)}: " + "; ".join(body))
+        if len(out) >= limit:
+            break
+    return out

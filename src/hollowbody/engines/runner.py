@@ -19,6 +19,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from hollowbody.engines.commands import (
     RunPlan,
     lsdyna_memory,
@@ -137,20 +139,23 @@ def plan_run(engine: str, deck: Path, out: Path, np_: int = 1, threads: int = 1,
             install, found = _placeholder_radioss(engine_path), False
             notes.append(f"not found here: {exc}")
         parsed = read_deck(deck)
-        radioss_deck.check_for_openradioss(parsed)
+        contact_notes = radioss_deck.check_for_openradioss(parsed)
         _, _, model = model_size(deck)
         dt0 = initial_step(model) if model.controls.dtmin > 0.0 else None
         settings = radioss_deck.engine_settings(parsed, dt0)
         if end_time is not None:
             settings = radioss_deck.EngineSettings(**{**settings.__dict__,
                                                       "end_time": float(end_time)})
+        starter_in = radioss_deck.starter_input(engine_deck, out)
         if write:
             out.mkdir(parents=True, exist_ok=True)
-            _, changes = radioss_deck.rewrite_for_openradioss(deck, engine_deck)
+            starter_in, changes = radioss_deck.rewrite_for_openradioss(deck, engine_deck)
             notes += changes
-        root = radioss_root(engine_deck)
+        else:
+            notes += contact_notes
+        root = radioss_root(starter_in)
         name = f"{root}_0001.rad"
-        plan = openradioss_plan(install, engine_deck, out, np_, threads, engine_file=name)
+        plan = openradioss_plan(install, starter_in, out, np_, threads, engine_file=name)
         text = radioss_deck.engine_file_text(root, settings, deck.name)
         if settings.dtmin_abs > 0.0:
             notes.append(f"DTMIN {model.controls.dtmin:g} x initial step {dt0:.6g} ms "
@@ -278,10 +283,10 @@ def execute(prep: Prepared, quiet: bool = True) -> dict:
             from hollowbody.engines.radioss_deck import merge_engine_files
 
             name, text = prep.engine_file
-            generated = out / name
-            if generated.is_file():  # the starter's translation of the deck's controls
+            generated = _starter_engine_file(out, name)
+            if generated is not None:  # the starter's translation of the deck's controls
                 text = merge_engine_files(generated.read_text(errors="replace"), text)
-            generated.write_text(text)
+            (out / name).write_text(text)
         listing = out / f"{radioss_root(plan.deck)}_0001.out" if cmd.step == "engine" else None
         codes[cmd.step] = _run(cmd, quiet=quiet, listing=listing)
         if cmd.step == "starter" and codes[cmd.step] != 0:
@@ -293,8 +298,41 @@ def execute(prep: Prepared, quiet: bool = True) -> dict:
     return _collect_lsdyna(prep, wall, codes, commands)
 
 
+def _with_th_energies(g: np.ndarray, extra: dict[str, np.ndarray]) -> list[list[float]]:
+    """glstat rows (n, len(GLSTAT_ORDER)) of the listing with the time history's
+    hourglass and contact energies: the total is then hollowbody's (kinetic + internal
+    + hourglass + contact; OpenRadioss's listing counts neither in its internal
+    energy) and the ratio total / (initial total + external work) is recomputed.
+    Rows where either energy is unknown (NaN) keep the listing's total and ratio."""
+    from hollowbody.engines.lsdyna_ascii import GLSTAT_ORDER
+
+    col = GLSTAT_ORDER.index
+    for name, v in extra.items():
+        g[:, col(name)] = v
+    hg, ce = g[:, col("hourglass [J]")], g[:, col("contact [J]")]
+    ok = np.isfinite(hg) & np.isfinite(ce)
+    if ok.any():
+        total = g[:, col("kinetic [J]")] + g[:, col("internal [J]")] + hg + ce
+        e0 = total[np.argmax(ok)]
+        denom = e0 + g[:, col("external_work [J]")]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(denom != 0.0, total / denom, np.nan)
+        g[ok, col("total [J]")] = total[ok]
+        g[ok, col("energy_ratio")] = ratio[ok]
+    return g.tolist()
+
+
+def _starter_engine_file(out: Path, name: str) -> Path | None:
+    """The engine file the starter wrote: ``name``, or (a keyword deck included in a
+    native starter file) the other ``*_0001.rad`` of the folder; None when none."""
+    if (out / name).is_file():
+        return out / name
+    others = sorted(p for p in out.glob("*_0001.rad") if p.name != name)
+    return others[0] if others else None
+
+
 def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -> dict:
-    from hollowbody.engines.lsdyna_status import ERROR, UNKNOWN
+    from hollowbody.engines.lsdyna_status import ERROR, NORMAL, UNKNOWN
     from hollowbody.engines.radioss_listing import read_listing
     from hollowbody.engines.results import write_histories, write_summary
 
@@ -303,21 +341,39 @@ def _collect_radioss(prep: Prepared, wall: float, codes: dict, commands: list) -
     lst = read_listing(out / f"{root}_0001.out", out / f"{root}_engine.log")
     status, reason = lst.status, lst.reason
     if codes.get("starter", 0) != 0:
+        from hollowbody.engines.radioss_listing import starter_errors
+
+        errs = starter_errors(out / f"{root}_0000.out")
         status, reason = ERROR, (f"the starter stopped (exit code {codes['starter']}); see "
-                                 f"{root}_0000.out")
+                                 f"{root}_0000.out" + (": " + " | ".join(errs) if errs else ""))
     elif status == UNKNOWN and codes.get("engine", 0) != 0:
         status, reason = ERROR, f"the engine stopped (exit code {codes['engine']})"
-    write_histories(out, {"glstat": lst.rows})
     notes = list(prep.notes)
-    notes.append("rcforc.csv and nodout.csv are not converted from OpenRadioss's time "
-                 "history yet")
+    rows: dict[str, list[list[float]]] = {"glstat": lst.rows}
+    th = out / f"{root}T01.csv"
+    if th.is_file():
+        from hollowbody.engines.radioss_th import energies_at, histories
+
+        rows.update(histories(th))
+        if lst.rows:  # the listing's table lacks the hourglass and contact energies
+            rows["glstat"] = _with_th_energies(np.array(lst.rows, dtype=float),
+                                               energies_at(th, np.array(lst.rows)[:, 0]))
+        notes.append(f"rcforc.csv and nodout.csv from the time history {th.name}")
+    else:
+        notes.append(f"no time history {th.name} (th_to_csv missing or the run stopped "
+                     "early): no rcforc.csv nor nodout.csv")
+    write_histories(out, rows)
     vtk = sorted(glob.glob(str(out / f"{root}A*.vtk")))
     if vtk:
         _write_pvd(out, [Path(v).name for v in vtk], prep)
+    end = lst.end_time_ms
+    if status == NORMAL and prep.end_time_ms is not None:
+        end = prep.end_time_ms  # the listing's table stops at its last /PRINT cycle
     return write_summary(out, engine="openradioss", version=lst.version, status=status,
-                         reason=reason, where=lst.where, end_time_ms=lst.end_time_ms,
+                         reason=reason, where=lst.where, end_time_ms=end,
                          requested_end_time_ms=prep.end_time_ms, cycles=lst.cycles,
-                         wall_seconds=wall, glstat=lst.rows, commands=commands, notes=notes)
+                         wall_seconds=wall, glstat=rows["glstat"], commands=commands,
+                         notes=notes)
 
 
 def _write_pvd(out: Path, files: list[str], prep: Prepared) -> None:

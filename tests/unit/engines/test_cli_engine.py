@@ -42,7 +42,7 @@ def test_dry_run_openradioss_prints_the_plan_and_writes_nothing(tmp_path, capsys
                  "--out", str(out), "--dry-run"])
     assert code == 0
     text = capsys.readouterr().out
-    assert "starter_" in text and "-i block_drop.k -np 4" in text
+    assert "starter_" in text and "-i block_drop_0000.rad -np 4" in text
     assert "mpirun -np 4" in text and "engine_" in text and "_ompi" in text
     assert "-i block_drop_0001.rad" in text and "env OMP_NUM_THREADS=2" in text
     assert f"cd {out}" in text and "not found here" in text
@@ -109,5 +109,7 @@ def test_the_decks_the_engines_read_are_written_into_the_run_folder(tmp_path, no
     out = tmp_path / "or"
     prep = plan_run("openradioss", EXAMPLE, out, dry_run=True, write=True)
     assert (out / "block_drop.k").is_file() and prep.engine_file[0] == "block_drop_0001.rad"
+    assert prep.plan.deck == out / "block_drop_0000.rad"
+    assert "/INCLUDE_LS-DYNA\nblock_drop.k\n" in prep.plan.deck.read_text()
     with pytest.raises(Exception, match="overwritten"):
         plan_run("lsdyna", out / "block_drop.k", out, dry_run=True)

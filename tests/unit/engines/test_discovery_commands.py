@@ -167,3 +167,25 @@ def test_environment_is_added_to_the_callers(tmp_path):
     env = run_env(cmd, {"HOME": "/home/u", "OMP_NUM_THREADS": "8"})
     assert env["HOME"] == "/home/u" and env["OMP_NUM_THREADS"] == "1"
     assert os.pathsep not in env["RAD_CFG_PATH"]
+
+
+def test_a_source_build_of_the_mpi_engine_only_runs_one_domain_on_it(tmp_path):
+    """A build of OpenRadioss's sources with the open reader and the MPI engine only:
+    the open reader's library is in exec/ (on the library path), and --np 1 starts
+    the MPI engine alone (one domain) instead of the missing OpenMP-only engine."""
+    from hollowbody.engines.commands import openradioss_plan
+
+    root = tmp_path / "src"
+    for n in (f"starter_{ARCH}", f"engine_{ARCH}_ompi"):
+        _touch_exe(root / "exec" / n)
+    (root / "exec" / "libopen_reader_linux64.so").write_text("")
+    inst = find_openradioss(root, env={"PATH": ""}, arch=ARCH)
+    assert inst.engine is None and inst.engine_mpi == root / "exec" / f"engine_{ARCH}_ompi"
+    assert inst.env["LD_LIBRARY_PATH"].split(":")[0] == str(root / "exec")
+    plan = openradioss_plan(inst, tmp_path / "d_0000.rad", tmp_path, 1, 1)
+    eng = next(c for c in plan.commands if c.step == "engine")
+    assert eng.argv() == [str(inst.engine_mpi), "-i", "d_0001.rad"]
+    # without any engine it is not found
+    (root / "exec" / f"engine_{ARCH}_ompi").unlink()
+    with pytest.raises(EngineNotFound, match=f"engine_{ARCH}"):
+        find_openradioss(root, env={"PATH": ""}, arch=ARCH)

@@ -28,7 +28,6 @@ from hollowbody.engines.radioss_deck import (
     rewrite_for_openradioss,
 )
 from hollowbody.engines.radioss_listing import parse_listing, read_listing
-from hollowbody.errors import DeckError
 from hollowbody.io.keyword import read_deck, write_deck
 from hollowbody.testing.decks import box_deck
 
@@ -90,27 +89,17 @@ def _box_with(tmp_path, extra: str) -> Path:
     return deck
 
 
-def test_a_deck_with_a_contact_is_refused_naming_file_line_and_keyword(tmp_path):
-    deck = _box_with(tmp_path, "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n"
-                               "         1         0         2\n\n\n")
-    line = deck.read_text().splitlines().index("*CONTACT_AUTOMATIC_SINGLE_SURFACE") + 1
-    with pytest.raises(DeckError) as err:
-        rewrite_for_openradioss(deck, tmp_path / "out" / "box.k")
-    assert err.value.file == str(deck) and err.value.line in (line, line + 1)
-    assert err.value.keyword.startswith("CONTACT_AUTOMATIC_SINGLE_SURFACE")
-    assert "error 2087" in str(err.value)
-    assert not (tmp_path / "out" / "box.k").exists()
-
-
 def test_rewrite_inlines_includes_and_drops_control_contact(tmp_path):
-    out, notes = rewrite_for_openradioss(BLOCK, tmp_path / "main.k")
+    starter, notes = rewrite_for_openradioss(BLOCK, tmp_path / "main.k")
+    assert starter == tmp_path / "main_0000.rad"
+    out = tmp_path / "main.k"
     text = out.read_text()
     assert "*INCLUDE" not in text and "*NODE" in text and "*ELEMENT_SOLID" in text
     assert any("include" in n for n in notes)
     assert read_deck(out) is not None  # the written deck reads back
     deck = _box_with(tmp_path, "*CONTROL_CONTACT\n       0.1\n")
-    out, notes = rewrite_for_openradioss(deck, tmp_path / "box2.k")
-    assert "*CONTROL_CONTACT" not in out.read_text()
+    _, notes = rewrite_for_openradioss(deck, tmp_path / "box2.k")
+    assert "*CONTROL_CONTACT" not in (tmp_path / "box2.k").read_text()
     assert any("*CONTROL_CONTACT" in n for n in notes)
 
 
@@ -142,6 +131,13 @@ def test_dtmin_becomes_an_absolute_minimum_step(tmp_path):
     assert body[body.index("/DT/SHELL/STOP") + 1] == body[i + 1]
     # without the initial step there is no minimum
     assert engine_settings(deck).dtmin_abs == 0.0
+    # ERODE = 1: the element whose step falls below DTMIN is deleted, the run goes on
+    from hollowbody.io.keyword import ControlTimestep
+
+    deck.add(ControlTimestep(tssfac=0.9, erode=1))
+    body = engine_file_text("box", engine_settings(deck, dt0=2.0e-4)).splitlines()
+    assert "/DT/BRICK/DEL" in body and "/DT/SHELL/DEL" in body
+    assert "/DT/BRICK/STOP" not in body
     # defaults when the deck asks for no output: end / 500 and end / 20
     assert (s.history_dt, s.anim_dt) == (1.0 / 500, 1.0 / 20)
 
@@ -188,3 +184,24 @@ def test_a_finished_openradioss_run_folder_becomes_hollowbodys_files(tmp_path):
     # a starter that stopped is an error termination pointing at its listing
     s = _collect_radioss(prep, 0.1, {"starter": 2}, [])
     assert s["status"] == ERROR and "box_0000.out" in s["reason"]
+
+
+def test_the_starters_errors_are_read_from_its_listing(tmp_path):
+    """A starter listing (SYNTHETIC, in the layout of the messages OpenRadioss's starter
+    writes to ROOT_0000.out) gives the first errors, one line each."""
+    from hollowbody.engines.radioss_listing import starter_errors
+
+    (tmp_path / "d_0000.out").write_text(
+        "   INTERFACE NUMBER :         1 tissue-impactor\n\n"
+        "ERROR ID :   2087\n** REFERENCE TO UNDEFINED GROUP ID\nDESCRIPTION :  \n"
+        "   -- INTER ID   : 1\n   -- INTER TITLE: tissue-impactor\n"
+        "   REFERENCE TO UNDEFINED GROUP ID 5\n\n    TYPE==25  MUTI-TYPE IMPACTING\n\n"
+        "WARNING ID :    343\n** WARNING: INITIAL PENETRATIONS IN INTERFACE\n\n"
+        "ERROR ID :   1000\n** ERROR IN INTERFACE DEFINITION\nDESCRIPTION :  \n"
+        "   IN INTERFACE NB 1\n   Surf_1 DOES NOT EXIST\n\n")
+    errs = starter_errors(tmp_path / "d_0000.out")
+    assert errs == ["error 2087: REFERENCE TO UNDEFINED GROUP ID; -- INTER ID   : 1; "
+                    "-- INTER TITLE: tissue-impactor; REFERENCE TO UNDEFINED GROUP ID 5",
+                    "error 1000: ERROR IN INTERFACE DEFINITION; IN INTERFACE NB 1; "
+                    "Surf_1 DOES NOT EXIST"]
+    assert starter_errors(tmp_path / "missing.out") == []

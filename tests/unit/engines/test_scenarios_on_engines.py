@@ -3,7 +3,7 @@
 Neither OpenRadioss nor LS-DYNA is installed here, so what is checked is what
 does not need one: the deck handed to the engine is the block test's own, the
 plan printed by ``--dry-run``, the errors (engine missing, options without an
-engine, OpenRadioss refusing LS-DYNA contacts) and the folders and files that
+engine) and the folders and files that
 ``block_impact`` writes around an engine's run. The real runs are in
 ``test_real_engines.py`` (skipped with the reason when no engine is found).
 """
@@ -61,12 +61,12 @@ def test_block_on_a_missing_engine_is_exit_2_in_one_line(tmp_path, capsys, no_en
     assert len(err) == 1 and err[0].startswith("hollowbody block: error: LS-DYNA not found")
 
 
-def test_block_on_openradioss_names_the_contact_it_refuses(tmp_path, capsys, no_engines):
+def test_block_on_openradioss_writes_its_contacts_natively(tmp_path, capsys, no_engines):
     out = tmp_path / "r"
-    assert main(["block", "--engine", "openradioss", "--dry-run", "--out", str(out)]) == 2
-    err = capsys.readouterr().err
-    assert f"{out / 'deck.k'}:" in err and "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE" in err
-    assert "Traceback" not in err
+    assert main(["block", "--engine", "openradioss", "--dry-run", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "-i deck_0000.rad" in text and "TYPE25" in text
+    assert (out / "deck.k").is_file() and not (out / "openradioss").exists()
 
 
 @pytest.mark.parametrize("args, message", [
