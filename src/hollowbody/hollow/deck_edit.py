@@ -156,8 +156,8 @@ class IdAllocator:
 def referenced_nodes(deck: Deck, skip_pids: set[int]) -> np.ndarray:
     """Node ids (sorted unique) referred to by anything but the solids of ``skip_pids``:
     other elements, mass elements, discrete elements, node and segment sets, SPCs, motions,
-    velocities, histories, *PART_INERTIA nodes. (*SET_NODE_LIST_GENERATE ranges and raw keywords are not
-    counted: the builder skips missing nodes of generated sets.)"""
+    velocities, histories, *PART_INERTIA nodes. (*SET_NODE_LIST_GENERATE ranges and raw
+    keywords are not counted: the builder skips missing nodes of generated sets.)"""
     parts: list[np.ndarray] = []
     for it in deck.iter_items():
         if isinstance(it, SolidElements):
