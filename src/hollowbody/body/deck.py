@@ -15,6 +15,8 @@ sections 1 (solids) and 10.. (shells by thickness).
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
 from hollowbody.body import anatomy as an
@@ -133,7 +135,8 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     joints.add(SetNodeList(sid=1, nodes=feet, title="feet (floor contact)"))
     main.add(RigidwallPlanar(nsid=1, xh=0.0, yh=0.0, zh=1.0, fric=0.6))
     hist = info["history"]
-    main.add(comment(["history nodes: " + ", ".join(f"{k} {v}" for k, v in hist.items())]))
+    main.add(comment(textwrap.wrap("history nodes: " + ", ".join(f"{k} {v}" for k, v in
+                                                                  hist.items()), 80)))
     main.add(DatabaseHistoryNode(ids=list(hist.values())))
     main.add_include("materials.k", mats)
     for name in REGIONS:
