@@ -147,6 +147,7 @@ def test_report_has_no_unsupported_keyword_and_a_step(tmp_path) -> None:
     assert set(r["history_nodes"]) == {"head_cg", "T1", "T8", "sacrum", "knee_l", "knee_r",
                                        "knee_l_tibia", "knee_r_tibia"}
     assert abs(r["mass"]["error_pct"]) < 1.0
+    assert [len(r["knee"]["elements"][k]) for k in ("knee_l", "knee_r")] == [6, 6]
     md = (tmp_path / "report.md").read_text()
     assert "| thigh_l |" in md and "unsupported keywords: none" in md
     assert json.loads((tmp_path / "report.json").read_text())["elements"]["solid"] > 0
