@@ -15,10 +15,13 @@ sections 1 (solids) and 10.. (shells by thickness).
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
 from hollowbody.body import anatomy as an
 from hollowbody.body.joints import DAMPING, STOP_STIFFNESS, joint_specs, walking_tone
+from hollowbody.body.knee import Knee, knee_springs, lower_leg_mass
 from hollowbody.body.materials import MATERIALS
 from hollowbody.body.pedestrian import Body, part_density, rigid_bodies
 from hollowbody.io.keyword import (
@@ -84,7 +87,7 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
     main.add(ControlTimestep(tssfac=0.9))
     main.add(DefineCurve(lcid=LCID_GRAVITY, points=[[0.0, 1.0], [1.0e6, 1.0]], title="gravity"))
     main.add(LoadBody(axis="Z", lcid=LCID_GRAVITY, sf=GRAVITY))
-    for name in ("GLSTAT", "MATSUM", "RBDOUT", "NODOUT", "JNTFORC", "RWFORC"):
+    for name in ("GLSTAT", "MATSUM", "RBDOUT", "NODOUT", "JNTFORC", "RWFORC", "DEFORC"):
         main.add(DatabaseAscii(name=name, dt=output_dt))
     main.add(DatabaseBinaryD3plot(dt=max(output_dt, end_time / 30.0)))
     files = {r: Deck() for r in REGIONS}
@@ -127,12 +130,13 @@ def pedestrian_deck(body: Body, end_time: float = 150.0, output_dt: float = 1.0,
         else:
             d.add(Part(pid=p.pid, secid=secid, mid=mid, hgid=hg, title=p.name))
     joints = Deck()
-    info = _joints(joints, body, x.shape[0] + 1, gone, tone)
+    info = _joints(joints, body, x.shape[0] + 1, gone, tone, first_eid=eid)
     feet = np.unique(np.concatenate([body.parts[f"foot_{s}"].conn.ravel() for s in "lr"])) + 1
     joints.add(SetNodeList(sid=1, nodes=feet, title="feet (floor contact)"))
     main.add(RigidwallPlanar(nsid=1, xh=0.0, yh=0.0, zh=1.0, fric=0.6))
     hist = info["history"]
-    main.add(comment(["history nodes: " + ", ".join(f"{k} {v}" for k, v in hist.items())]))
+    main.add(comment(textwrap.wrap("history nodes: " + ", ".join(f"{k} {v}" for k, v in
+                                                                  hist.items()), 80)))
     main.add(DatabaseHistoryNode(ids=list(hist.values())))
     main.add_include("materials.k", mats)
     for name in REGIONS:
@@ -212,8 +216,8 @@ def materials(d: Deck, body: Body, parts: list[an.PartMesh] | None = None) -> No
                            title=f"rigid: {p.name}"))
 
 
-def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool = True
-            ) -> dict:
+def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool = True,
+            first_eid: int = 1) -> dict:
     sk = body.skeleton
     pid = rigid_bodies(body)
     nid = first_node
@@ -226,7 +230,7 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool
                                                           [4.0, 4.0 * slope]], title=title))
         return curves[slope]
 
-    jids, knee_nodes = {}, {}
+    jids, knee_nodes, knees = {}, {}, []
     nodes, xyz = [], []
     damp = curve(DAMPING * 1000.0, "joint damping [kN mm] vs angle rate [rad/ms]")
     tone = walking_tone(sk) if use_tone else {}
@@ -241,7 +245,11 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool
         xyz += [c, c]
         d.add(ConstrainedExtraNodesNode(pid=pid[spec.body_a], nid=n1))
         d.add(ConstrainedExtraNodesNode(pid=pid[spec.body_b], nid=n2))
-        d.add(ConstrainedJoint(kind="SPHERICAL", n1=n1, n2=n2, jid=j, heading=spec.name))
+        knee = spec.name.startswith("knee")
+        if knee:  # not tied: translational springs (body/knee.py) and the stiffness
+            knees.append(Knee(spec.name, n1, n2, fr))
+        else:
+            d.add(ConstrainedJoint(kind="SPHERICAL", n1=n1, n2=n2, jid=j, heading=spec.name))
         d.add(DefineCoordinateSystem(cid=j, xo=c[0], yo=c[1], zo=c[2], xl=c[0] + fr[0, 0],
                                      yl=c[1] + fr[0, 1], zl=c[2] + fr[0, 2],
                                      xp=c[0] + fr[1, 0], yp=c[1] + fr[1, 1],
@@ -249,13 +257,14 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool
         lc = [curve(k, f"joint moment [kN mm] vs angle [rad], {k:g} N m/rad") for k in spec.k]
         (n_ph, p_ph), (n_t, p_t), (n_ps, p_ps) = spec.stops
         d.add(JointStiffnessGeneralized(
-            jsid=j, pida=pid[spec.body_a], pidb=pid[spec.body_b], cida=j, cidb=0, jid=j,
+            jsid=j, pida=pid[spec.body_a], pidb=pid[spec.body_b], cida=j, cidb=0,
+            jid=0 if knee else j,
             lcidph=lc[0], lcidt=lc[1], lcidps=lc[2], dlcidph=damp, dlcidt=damp,
             dlcidps=damp, esph=STOP_STIFFNESS, est=STOP_STIFFNESS, esps=STOP_STIFFNESS,
             nsaph=n_ph, psaph=p_ph, nsat=n_t, psat=p_t, nsaps=n_ps, psaps=p_ps,
             title=spec.name))
         jids[spec.name] = j
-        if spec.name.startswith("knee"):
+        if knee:
             knee_nodes[spec.name] = n1
     hist = {}
     for name, body_name, point in (("head_cg", "head", body.parts["head"].inertia[1]),
@@ -269,13 +278,19 @@ def _joints(d: Deck, body: Body, first_node: int, gone: set[int], use_tone: bool
         nid += 1
     hist["knee_l"] = knee_nodes["knee_l"]
     hist["knee_r"] = knee_nodes["knee_r"]
+    # the tibia-side knee nodes: the knee's shear is their displacement relative to knee_l/r
+    hist["knee_l_tibia"] = knee_nodes["knee_l"] + 1
+    hist["knee_r_tibia"] = knee_nodes["knee_r"] + 1
+    springs = knee_springs(d, knees, lower_leg_mass(sk),
+                           first_pid=max(p.pid for p in body.mesh.parts) + 1,
+                           first_eid=first_eid)
     d.add_nodes(np.array(nodes), np.array(xyz))
     d.add(ConstrainedRigidBodies(pidm=pid["pelvis"], pids=pid["sacrum_part"]))
     for rigid, carrier in body.carriers.items():  # inertia carriers (body/inertia_fit.py)
         if carrier not in gone:
             lead = pid["pelvis"] if rigid == pid["sacrum_part"] else rigid
             d.add(ConstrainedRigidBodies(pidm=lead, pids=carrier))
-    return {"history": hist, "joints": jids, "tone": tone}
+    return {"history": hist, "joints": jids, "tone": tone, "knee": springs}
 
 
 def _zone_centre(body: Body, zone: str) -> np.ndarray:

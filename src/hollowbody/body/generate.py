@@ -136,6 +136,7 @@ def generate(out: str | Path, opts: PedestrianOptions, hollow_options=None  # no
         "history_nodes": info["history"],
         "joints": info["joints"],
         "postural_tone_Nm_per_rad": info.get("tone", {}),
+        "knee": knee_report(info.get("knee", {})),
     }
     if info["conversion"] is not None:
         rep = info["conversion"]
@@ -154,6 +155,17 @@ def generate(out: str | Path, opts: PedestrianOptions, hollow_options=None  # no
     (out / "report.json").write_text(json.dumps(report, indent=1, default=_jsonable) + "\n")
     (out / "report.md").write_text(markdown(report))
     return report
+
+
+def knee_report(springs: dict) -> dict:
+    """The knees' springs for the report: element ids (springs x, y, z along the shank's
+    axes, then dampers x, y, z), part ids and the values (:mod:`hollowbody.body.knee`)."""
+    from hollowbody.body import knee
+
+    return {"elements": springs.get("elements", {}), "parts": springs.get("parts", {}),
+            "shear_kN_per_mm": knee.SHEAR_STIFFNESS, "shear_stop_mm": knee.SHEAR_STOP,
+            "stop_kN_per_mm": knee.STOP_STIFFNESS, "axial_kN_per_mm": knee.AXIAL_STIFFNESS,
+            "damping_kN_ms_per_mm": list(springs.get("damping", (0.0, 0.0)))}
 
 
 def _jsonable(v):  # noqa: ANN001, ANN202
@@ -193,6 +205,14 @@ def markdown(r: dict) -> str:
               f"- initial penetrations between segments: {r['penetrations']['total']}",
               "- history nodes: " + ", ".join(f"{k} {v}" for k, v in
                                               r["history_nodes"].items())]
+    k = r.get("knee", {})
+    if k.get("elements"):
+        lines.append(f"- knees: shear springs {k['shear_kN_per_mm']:g} kN/mm to "
+                     f"{k['shear_stop_mm']:g} mm, then {k['stop_kN_per_mm']:g} kN/mm; axial "
+                     f"{k['axial_kN_per_mm']:g} kN/mm; dampers "
+                     f"{'/'.join(f'{c:g}' for c in k['damping_kN_ms_per_mm'])} kN ms/mm; "
+                     "discrete elements (x, y, z springs, x, y, z dampers) " + ", ".join(
+                         f"{n} {v[0]}-{v[-1]}" for n, v in k["elements"].items()))
     if r.get("postural_tone_Nm_per_rad"):
         lines.append("- postural tone (stiffness phi/theta/psi, N m/rad): " + ", ".join(
             f"{k} {'/'.join(f'{x:g}' for x in v)}"

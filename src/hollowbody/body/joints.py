@@ -1,6 +1,6 @@
 """The pedestrian's joints: spherical joints with generalized rotational stiffness.
 
-Every joint is a *CONSTRAINED_JOINT_SPHERICAL between the rigid bodies of the
+Every joint but the knees is a *CONSTRAINED_JOINT_SPHERICAL between the rigid bodies of the
 two segments (node pair at the joint centre, each node added to its body by
 *CONSTRAINED_EXTRA_NODES_NODE) with a *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED
 in the distal segment's frame at the joint (x anterior, y to the body's
@@ -21,8 +21,9 @@ choices that hold the standing posture under gravity for the 150 ms of an
 impact. In the walking posture the flexion of hips, knees, shoulders and
 elbows and the hips' axial rotation get a postural tone sized from the
 posture's gravity moments (:mod:`hollowbody.body.tone`) in place of the
-passive values. The knee is a spherical joint with stiffness, not a hinge: it
-bends in valgus/varus under lateral load; it does not shear (no translation).
+passive values. The knee is not a spherical joint: its stiffness acts between
+femur and tibia ends joined by translational springs, so it bends in
+valgus/varus and shears under lateral load (:mod:`hollowbody.body.knee`).
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ from hollowbody.io.keyword import (
     Contact,
     DatabaseHistoryNode,
     Deck,
+    ElementDiscrete,
     Include,
     InitialVelocityNode,
     KeywordItem,
@@ -26,6 +27,7 @@ from hollowbody.io.keyword import (
     PartInertia,
     PrescribedMotionNode,
     RawKeyword,
+    SectionDiscrete,
     SectionShell,
     SectionSolid,
     SetNodeList,
@@ -121,12 +123,12 @@ class IdAllocator:
             return vals
 
         elem = (ids(SolidElements, "ids") + ids(ShellElements, "ids") + ids(MassElements, "ids")
-                + _raw_ids(deck, ("ELEMENT_",), True))
+                + ids(ElementDiscrete, "eid") + _raw_ids(deck, ("ELEMENT_",), True))
         self.next = {
             "node": ids(Nodes, "ids") + _raw_ids(deck, ("NODE",), True),
             "element": elem,
             "section": ids(SectionSolid, "secid") + ids(SectionShell, "secid")
-            + _raw_ids(deck, ("SECTION_",), False),
+            + ids(SectionDiscrete, "secid") + _raw_ids(deck, ("SECTION_",), False),
             "material": ids(Material, "mid") + _raw_ids(deck, ("MAT_",), False),
             "node_set": ids(SetNodeList, "sid") + ids(SetNodeListGenerate, "sid")
             + _raw_ids(deck, ("SET_NODE",), False),
@@ -153,9 +155,9 @@ class IdAllocator:
 
 def referenced_nodes(deck: Deck, skip_pids: set[int]) -> np.ndarray:
     """Node ids (sorted unique) referred to by anything but the solids of ``skip_pids``:
-    other elements, mass elements, node and segment sets, SPCs, motions, velocities,
-    histories, *PART_INERTIA nodes. (*SET_NODE_LIST_GENERATE ranges and raw keywords are not
-    counted: the builder skips missing nodes of generated sets.)"""
+    other elements, mass elements, discrete elements, node and segment sets, SPCs, motions,
+    velocities, histories, *PART_INERTIA nodes. (*SET_NODE_LIST_GENERATE ranges and raw
+    keywords are not counted: the builder skips missing nodes of generated sets.)"""
     parts: list[np.ndarray] = []
     for it in deck.iter_items():
         if isinstance(it, SolidElements):
@@ -165,6 +167,8 @@ def referenced_nodes(deck: Deck, skip_pids: set[int]) -> np.ndarray:
             parts.append(it.conn.ravel())
         elif isinstance(it, MassElements):
             parts.append(it.nids)
+        elif isinstance(it, ElementDiscrete):
+            parts.append(np.array([n for n in (it.n1, it.n2) if n], dtype=np.int64))
         elif isinstance(it, SetNodeList):
             parts.append(it.nodes)
         elif isinstance(it, SetSegment):

@@ -37,6 +37,9 @@ def test_omitted_segments_leave_the_deck(body) -> None:
                      "hand_l", "forearm_l proximal epiphysis inertia",
                      "forearm_l distal epiphysis inertia"}
     pids = {p.pid for p in cut.of_type(Part)} | {p.pid for p in cut.of_type(PartInertia)}
+    knee = set(info["knee"]["parts"].values())  # the knees' discrete parts, after the mesh's
+    assert len(knee) == 4 and min(knee) > max(p.pid for p in body.mesh.parts)
+    pids -= knee
     assert not pids & gone and len(pids) == len(body.mesh.parts) - len(gone)
     assert not {1000 + p for p in gone} & {m.mid for m in cut.of_type(MatRigid)}
     heads = {j.heading for j in cut.of_type(ConstrainedJoint)}

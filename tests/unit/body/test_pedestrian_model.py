@@ -18,7 +18,7 @@ from hollowbody.body.skeleton import standing
 from hollowbody.body.tube import _signed_volume
 from hollowbody.build import build_model
 from hollowbody.cli.main import main
-from hollowbody.io.keyword import ConstrainedJoint, Nodes, read_deck
+from hollowbody.io.keyword import ConstrainedJoint, ElementDiscrete, Nodes, read_deck
 
 COARSE = 50.0  # mm: the coarsest mesh the generator accepts (fast tests)
 
@@ -89,7 +89,8 @@ def _deck_nodes(deck) -> dict[int, np.ndarray]:
 def test_joint_nodes_at_joint_centres(tmp_path, posture: str) -> None:
     """Written and read back, each joint's node pair sits at its joint centre (the
     deck's 8-digit precision: 1e-3 mm) and the deck builds (joint nodes on rigid
-    bodies, stiffness systems valid)."""
+    bodies, stiffness systems valid). The knees are not spherical joints: their node
+    pairs are joined by six discrete elements each (body/knee.py)."""
     b = build_body(mesh=COARSE, posture=posture)
     deck, info = pedestrian_deck(b)
     from hollowbody.io.keyword import write_deck
@@ -97,13 +98,17 @@ def test_joint_nodes_at_joint_centres(tmp_path, posture: str) -> None:
     write_deck(deck, tmp_path / "p.k", flatten=False)
     back = read_deck(tmp_path / "p.k")
     nodes = _deck_nodes(back)
-    joints = {j.heading: j for j in back.of_type(ConstrainedJoint)}
-    assert len(joints) == len(joint_specs()) == 18
+    joints = {j.heading: (j.n1, j.n2) for j in back.of_type(ConstrainedJoint)}
+    assert len(joints) == len(joint_specs()) - 2 == 16
+    for name, ids in info["knee"]["elements"].items():
+        pairs = {(e.n1, e.n2) for e in back.of_type(ElementDiscrete) if e.eid in ids}
+        assert len(ids) == 6 and len(pairs) == 1 and name not in joints
+        joints[name] = pairs.pop()
     for spec in joint_specs():
-        j = joints[spec.name]
+        n1, n2 = joints[spec.name]
         c = b.skeleton.point(spec.centre)
-        assert nodes[j.n1] == pytest.approx(c, abs=1e-3)
-        assert nodes[j.n2] == pytest.approx(c, abs=1e-3)
+        assert nodes[n1] == pytest.approx(c, abs=1e-3)
+        assert nodes[n2] == pytest.approx(c, abs=1e-3)
     build_model(back)
 
 
@@ -139,8 +144,10 @@ def test_report_has_no_unsupported_keyword_and_a_step(tmp_path) -> None:
     assert r["unsupported_keywords"] == []
     assert r["penetrations"]["total"] == 0
     assert 0.0005 < r["time_step_ms"]["run_dt"] < 0.01
-    assert set(r["history_nodes"]) == {"head_cg", "T1", "T8", "sacrum", "knee_l", "knee_r"}
+    assert set(r["history_nodes"]) == {"head_cg", "T1", "T8", "sacrum", "knee_l", "knee_r",
+                                       "knee_l_tibia", "knee_r_tibia"}
     assert abs(r["mass"]["error_pct"]) < 1.0
+    assert [len(r["knee"]["elements"][k]) for k in ("knee_l", "knee_r")] == [6, 6]
     md = (tmp_path / "report.md").read_text()
     assert "| thigh_l |" in md and "unsupported keywords: none" in md
     assert json.loads((tmp_path / "report.json").read_text())["elements"]["solid"] > 0
