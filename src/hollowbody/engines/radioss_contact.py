@@ -130,16 +130,21 @@ class _Writer:
         self.next_id += 1
         return self.next_id - 1
 
-    def _parts_surface(self, item, parts, what: str) -> _Side:  # noqa: ANN001
-        parts = [int(p) for p in parts]
+    def _parts(self, item, set_id: int, set_type: int, what: str) -> list[int]:  # noqa: ANN001
+        """The part ids of a part (3), part set (2) or all-parts (5) side."""
+        if set_type == 3:
+            parts = [int(set_id)]
+        elif set_type == 2:
+            if set_id not in self.part_sets:
+                raise item_error(item, f"{what}: part set {set_id} is not defined")
+            parts = [int(p) for p in self.part_sets[set_id]]
+        else:
+            parts = sorted(self.parts)
         missing = [p for p in parts if p not in self.parts]
         if missing or not parts:
             raise item_error(item, f"{what}: part {missing[0] if missing else '(none)'} is "
                              "not defined in the deck")
-        sid = self._new_id()
-        ext = "/EXT" if any(p in self.solid_parts for p in parts) else ""
-        lines = (f"/SURF/PART{ext}/{sid}", f"{what}"[:100], *_rows(parts))
-        return _Side(surface=sid, lines=lines)
+        return parts
 
     def node_side(self, item, set_id: int, set_type: int, what: str) -> _Side:  # noqa: ANN001
         """The native node group of a nodes-to-surface contact's slave side: a node set
@@ -150,24 +155,22 @@ class _Writer:
             gid = self._new_id()
             return _Side(nodes=gid, lines=(f"/GRNOD/NODE/{gid}", what[:100],
                                            *_rows(self.node_sets[set_id])))
-        surf = self.side(item, set_id, set_type, what)
-        if set_type == 0:
+        if set_type not in (2, 3, 5):
+            self.side(item, set_id, set_type, what)  # its error for unknown sets and types
             raise item_error(item, f"{what}: a segment set as slave nodes is not written "
                              "for OpenRadioss")
-        parts = surf.lines[2:]
-        gid = surf.surface  # the id is free: the surface itself is not written
-        return _Side(nodes=gid, lines=(f"/GRNOD/PART/{gid}", what[:100], *parts))
+        parts = self._parts(item, set_id, set_type, what)
+        gid = self._new_id()
+        return _Side(nodes=gid, lines=(f"/GRNOD/PART/{gid}", what[:100], *_rows(parts)))
 
     def side(self, item, set_id: int, set_type: int, what: str) -> _Side:  # noqa: ANN001
         """The native surface of one contact side."""
-        if set_type == 3:
-            return self._parts_surface(item, [set_id], what)
-        if set_type == 2:
-            if set_id not in self.part_sets:
-                raise item_error(item, f"{what}: part set {set_id} is not defined")
-            return self._parts_surface(item, self.part_sets[set_id], what)
-        if set_type == 5:
-            return self._parts_surface(item, sorted(self.parts), what)
+        if set_type in (2, 3, 5):
+            parts = self._parts(item, set_id, set_type, what)
+            sid = self._new_id()
+            ext = "/EXT" if any(p in self.solid_parts for p in parts) else ""
+            return _Side(surface=sid, lines=(f"/SURF/PART{ext}/{sid}", what[:100],
+                                             *_rows(parts)))
         if set_type == 0:
             if set_id not in self.segment_sets:
                 raise item_error(item, f"{what}: segment set {set_id} is not defined")
