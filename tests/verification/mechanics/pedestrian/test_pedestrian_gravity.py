@@ -25,19 +25,7 @@ from hollowbody.cli.main import main
 def test_standing_under_gravity(tmp_path, tissue: str) -> None:
     r = generate(tmp_path, PedestrianOptions(mesh=50.0, end_time=3.0, picture=False,
                                              tissue=tissue))
-    out = tmp_path / "run"
-    assert main(["run", str(tmp_path / "pedestrian.k"), "--out", str(out), "--quiet",
-                 "--no-vtk"]) == 0
-    s = json.loads((out / "summary.json").read_text())
-    assert s["status"] == "normal termination"
-    assert s["quality"] == "ok", s["quality_reasons"]
-    assert abs(s["energy_ratio"] - 1.0) < 0.01
-    feet = {p.pid for _, p in _feet(tmp_path)}
-    rows = [row for row in csv.DictReader((out / "rbdout.csv").open())
-            if int(row["part"]) in feet]
-    assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
-    wall = list(csv.DictReader((out / "rwforc.csv").open()))
-    assert float(wall[-1]["normal [kN]"]) > 0.0
+    out = _run_and_check_standing(tmp_path)
     hist = r["history_nodes"]
     nodes = [row for row in csv.DictReader((out / "nodout.csv").open())
              if int(row["node"]) in (hist["knee_l"], hist["knee_r"])]
@@ -52,19 +40,27 @@ def test_walking_with_tone_under_gravity(tmp_path) -> None:
     r = generate(tmp_path, PedestrianOptions(mesh=50.0, end_time=3.0, picture=False,
                                              posture="walking"))
     assert r["postural_tone_Nm_per_rad"]["knee_r"][1] > 100.0
-    out = tmp_path / "run"
-    assert main(["run", str(tmp_path / "pedestrian.k"), "--out", str(out), "--quiet",
+    _run_and_check_standing(tmp_path)
+
+
+def _run_and_check_standing(folder):
+    """Run the generated deck in ``folder``; it ends normally with quality ok, a closed
+    energy balance (1 %), the feet on the floor (0.5 mm) and the floor carrying the
+    body. Returns the run's folder."""
+    out = folder / "run"
+    assert main(["run", str(folder / "pedestrian.k"), "--out", str(out), "--quiet",
                  "--no-vtk"]) == 0
     s = json.loads((out / "summary.json").read_text())
     assert s["status"] == "normal termination"
     assert s["quality"] == "ok", s["quality_reasons"]
     assert abs(s["energy_ratio"] - 1.0) < 0.01
-    feet = {p.pid for _, p in _feet(tmp_path)}
+    feet = {p.pid for _, p in _feet(folder)}
     rows = [row for row in csv.DictReader((out / "rbdout.csv").open())
             if int(row["part"]) in feet]
     assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
     wall = list(csv.DictReader((out / "rwforc.csv").open()))
     assert float(wall[-1]["normal [kN]"]) > 0.0
+    return out
 
 
 def _feet(folder):
