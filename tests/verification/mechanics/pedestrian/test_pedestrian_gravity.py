@@ -60,7 +60,32 @@ def _run_and_check_standing(folder):
     assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
     wall = list(csv.DictReader((out / "rwforc.csv").open()))
     assert float(wall[-1]["normal [kN]"]) > 0.0
+    _check_settling_report(folder, out, rows, float(wall[-1]["normal [kN]"]))
     return out
+
+
+def _check_settling_report(folder, out, feet_rows, floor_end: float) -> None:
+    """The settling report reads the same run: its feet and floor figures are those
+    read here from the raw histories, the weight is the model's mass times g, and
+    its head drop is the head history node's."""
+    from hollowbody.body.settling import settling_summary, settling_table
+
+    s = settling_summary(folder, out)
+    report = json.loads((folder / "report.json").read_text())
+    assert s["status"] == "normal termination" and s["quality"] == "ok"
+    assert s["weight_kN"] == pytest.approx(report["mass"]["model_kg"] * 9.81e-3, rel=1e-12)
+    assert s["floor_normal_end_kN"] == pytest.approx(floor_end, rel=1e-12)
+    assert max(f["uz_largest_mm"] for f in s["feet"].values()) == pytest.approx(
+        max(abs(float(r["uz [mm]"])) for r in feet_rows), rel=1e-12)
+    assert len(s["feet"]) == 2
+    head = [float(r["uz [mm]"]) for r in csv.DictReader((out / "nodout.csv").open())
+            if int(r["node"]) == report["history_nodes"]["head_cg"]]
+    assert s["landmarks"]["head_cg"]["uz_end_mm"] == pytest.approx(head[-1], rel=1e-12)
+    assert s["landmarks"]["head_cg"]["uz_lowest_mm"] == pytest.approx(min(head), rel=1e-12)
+    assert s["kinetic_largest_J"] >= s["kinetic_end_J"] >= 0.0
+    # glstat.csv holds the ratio to 9 significant digits, summary.json in full
+    assert abs(s["energy_ratio_worst"] - 1.0) >= abs(s["energy_ratio"] - 1.0) - 1e-8
+    assert settling_table({"run": s}).count("\n") == 3
 
 
 def _feet(folder):
