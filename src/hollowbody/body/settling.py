@@ -10,24 +10,15 @@ has the body come to rest. Units: mm, ms, kN, J.
 
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
 import numpy as np
 
-GRAVITY = 9.81e-3  # mm/ms^2
+from hollowbody.body.deck import GRAVITY
+from hollowbody.io.results.history import read_history
+
 LANDMARKS = ("head_cg", "T1", "T8", "sacrum", "knee_l", "knee_r")
-
-
-def _columns(path: Path) -> dict[str, np.ndarray]:
-    """Every column of a history CSV as a float array (header names as keys)."""
-    with path.open() as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
-        return {name: np.zeros(0) for name in rows[0]} if rows else {}
-    data = np.array([[float(v) for v in r] for r in rows[1:] if len(r) == len(rows[0])])
-    return {name: data[:, i] for i, name in enumerate(rows[0])}
 
 
 def _by_id(cols: dict[str, np.ndarray], key: str, ident: int) -> dict[str, np.ndarray]:
@@ -36,7 +27,7 @@ def _by_id(cols: dict[str, np.ndarray], key: str, ident: int) -> dict[str, np.nd
     return {name: v[mask] for name, v in cols.items()}
 
 
-def _foot_parts(deck: Path) -> dict[str, int]:
+def foot_parts(deck: Path) -> dict[str, int]:
     """Part ids of the feet, from the region decks' part titles (``foot_l``, ``foot_r``)."""
     from hollowbody.io.keyword import Part, PartInertia, read_deck
 
@@ -60,10 +51,10 @@ def settling_summary(model_dir: Path, run_dir: Path) -> dict:
     model_dir, run_dir = Path(model_dir), Path(run_dir)
     report = json.loads((model_dir / "report.json").read_text())
     summary = json.loads((run_dir / "summary.json").read_text())
-    gl = _columns(run_dir / "glstat.csv")
-    nod = _columns(run_dir / "nodout.csv")
-    rbd = _columns(run_dir / "rbdout.csv")
-    wall = _columns(run_dir / "rwforc.csv")
+    gl = read_history(run_dir / "glstat.csv")
+    nod = read_history(run_dir / "nodout.csv")
+    rbd = read_history(run_dir / "rbdout.csv")
+    wall = read_history(run_dir / "rwforc.csv")
     hist = report["history_nodes"]
     out: dict = {
         "model": report["options"],
@@ -81,11 +72,12 @@ def settling_summary(model_dir: Path, run_dir: Path) -> dict:
         "energy_ratio_worst": float(gl["energy_ratio"][np.argmax(np.abs(gl["energy_ratio"] - 1.0))])
         if gl["energy_ratio"].size else None,
     }
-    marks = {}
+    marks, node_rows = {}, {}
     for name in LANDMARKS:
         rows = _by_id(nod, "node", int(hist[name]))
         if not rows["time [ms]"].size:
             continue
+        node_rows[name] = rows
         marks[name] = {
             "uz_end_mm": float(rows["uz [mm]"][-1]),
             "uz_lowest_mm": float(rows["uz [mm]"].min()),
@@ -94,7 +86,7 @@ def settling_summary(model_dir: Path, run_dir: Path) -> dict:
         }
     out["landmarks"] = marks
     feet = {}
-    for name, pid in sorted(_foot_parts(model_dir / "pedestrian.k").items()):
+    for name, pid in sorted(foot_parts(model_dir / "pedestrian.k").items()):
         rows = _by_id(rbd, "part", pid)
         if not rows["time [ms]"].size:
             continue
@@ -117,9 +109,9 @@ def settling_summary(model_dir: Path, run_dir: Path) -> dict:
     out["curves"] = {
         "time_ms": [float(t) for t in gl["time [ms]"]],
         "kinetic_J": [float(v) for v in ke],
-        **{f"uz_{name}": [float(v) for v in _by_id(nod, "node", int(hist[name]))["uz [mm]"]]
-           for name in ("head_cg", "sacrum") if name in marks},
-        "node_time_ms": [float(t) for t in _by_id(nod, "node", int(hist["head_cg"]))["time [ms]"]],
+        **{f"uz_{name}": [float(v) for v in node_rows[name]["uz [mm]"]]
+           for name in ("head_cg", "sacrum") if name in node_rows},
+        "node_time_ms": [float(t) for t in node_rows["head_cg"]["time [ms]"]],
     }
     return out
 

@@ -18,6 +18,7 @@ import json
 import pytest
 
 from hollowbody.body.generate import PedestrianOptions, generate
+from hollowbody.body.settling import foot_parts, settling_summary, settling_table
 from hollowbody.cli.main import main
 
 
@@ -54,7 +55,7 @@ def _run_and_check_standing(folder):
     assert s["status"] == "normal termination"
     assert s["quality"] == "ok", s["quality_reasons"]
     assert abs(s["energy_ratio"] - 1.0) < 0.01
-    feet = {p.pid for _, p in _feet(folder)}
+    feet = set(foot_parts(folder / "pedestrian.k").values())
     rows = [row for row in csv.DictReader((out / "rbdout.csv").open())
             if int(row["part"]) in feet]
     assert rows and max(abs(float(row["uz [mm]"])) for row in rows) < 0.5
@@ -68,8 +69,6 @@ def _check_settling_report(folder, out, feet_rows, floor_end: float) -> None:
     """The settling report reads the same run: its feet and floor figures are those
     read here from the raw histories, the weight is the model's mass times g, and
     its head drop is the head history node's."""
-    from hollowbody.body.settling import settling_summary, settling_table
-
     s = settling_summary(folder, out)
     report = json.loads((folder / "report.json").read_text())
     assert s["status"] == "normal termination" and s["quality"] == "ok"
@@ -86,12 +85,3 @@ def _check_settling_report(folder, out, feet_rows, floor_end: float) -> None:
     # glstat.csv holds the ratio to 9 significant digits, summary.json in full
     assert abs(s["energy_ratio_worst"] - 1.0) >= abs(s["energy_ratio"] - 1.0) - 1e-8
     assert settling_table({"run": s}).count("\n") == 3
-
-
-def _feet(folder):
-    """(key, part) of the feet, read from the region decks' part titles."""
-    from hollowbody.io.keyword import Part, PartInertia, read_deck
-
-    deck = read_deck(folder / "pedestrian.k")
-    return [(p.title, p) for p in deck.of_type(PartInertia) + deck.of_type(Part)
-            if p.title.startswith("foot_")]
