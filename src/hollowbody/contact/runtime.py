@@ -55,6 +55,12 @@ from hollowbody.contact.frames import (
     segment_frames_of,
     segment_frames_of_parallel,
 )
+from hollowbody.contact.kinematic_step import (
+    KIN_FRACTION,
+    approach_step,
+    approach_step_serial,
+    work_arrays,
+)
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
@@ -185,6 +191,7 @@ class _Pass:
         self.seg_pid = np.full(nseg, -1, np.int64)
         #: (S,) bool: False for segments of deleted (eroded, failed) elements
         self.seg_alive = np.ones(nseg, dtype=bool)
+        self._kin_dt, self._kin_row = work_arrays(ns)
 
 
 class ContactRuntime:
@@ -221,7 +228,8 @@ class ContactRuntime:
         "time", "energy", "n_active", "slave_force", "master_force",
         "n_pass_through", "pass_through_nodes", "events", "_pending",
         "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev",
-        "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc")
+        "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc",
+        "dt_kin", "dt_kin_node", "n_step_limited", "dt_kin_min")
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
                  rigid_node: np.ndarray, fixed_node: np.ndarray | None = None,
@@ -373,6 +381,14 @@ class ContactRuntime:
         self.master_force = np.zeros(3)
         self.energy = 0.0
         self.n_active = 0
+        #: ms: this cycle's kinematic step limit (inf: no pair closes;
+        #: :mod:`hollowbody.contact.kinematic_step`) and the model node index that set
+        #: it (-1: none); the solver counts the cycles it set the step in
+        #: ``n_step_limited`` and keeps the smallest in ``dt_kin_min``
+        self.dt_kin = np.inf
+        self.dt_kin_node = -1
+        self.n_step_limited = 0
+        self.dt_kin_min = np.inf
 
     # ------------------------------------------------------------------
     def set_stiffening(self, fraction: float) -> None:
@@ -562,6 +578,7 @@ class ContactRuntime:
                 p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg, p.ow,
                 p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
+        self._approach_step(live)
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(
                 p.act, self._vl, dt, self._dtc, p.nodes, p.n_k, p.n_mass, p.seg, p.s_k,
@@ -575,6 +592,18 @@ class ContactRuntime:
         self.master_force[:] = -self.slave_force
         self.n_active = n_act
         self.energy += finish(self.nodes, self._fl, self._fprev, self._xl, self._xprev, f)
+
+
+    def _approach_step(self, live: list[_Pass]) -> None:
+        """This cycle's kinematic step limit over the passes (``dt_kin``, ``dt_kin_node``)."""
+        self.dt_kin, self.dt_kin_node = np.inf, -1
+        for p in live:
+            d, row = (approach_step if self._threaded(p) else approach_step_serial)(
+                p.act, self._xl, self._vl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth,
+                p.s_two, p.cen, p.nrm, p.rad2, p.nptr, p.ncand, KIN_FRACTION, p._kin_dt,
+                p._kin_row)
+            if d < self.dt_kin:
+                self.dt_kin, self.dt_kin_node = float(d), int(self.nodes[p.nodes[row]])
 
 
 def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray

@@ -29,9 +29,9 @@ def critical_time_step(length, c, l_visc, trd, q1, q2):
     length: L_e mm; c: wave speed mm/ms; l_visc: V^(1/3) mm; trd: tr D 1/ms
     (mid-step); q1, q2: quadratic and linear bulk-viscosity coefficients.
     """
-    qv = 0.0
+    qv = q2 * c
     if trd < 0.0:
-        qv = q2 * c - q1 * l_visc * trd
+        qv -= 2.0 * q1 * l_visc * trd
     return length / (qv + math.sqrt(qv * qv + c * c))
 
 

@@ -209,8 +209,10 @@ def _start(model, plan, state: State, outputs: RunOutputs) -> None:  # noqa: ANN
     start(model, plan, state)
     state.monitors = Monitors(dt_initial=state.dt0)
     state.e0 = kinetic_energy(plan, state)
-    outputs.log(f"initial time step {state.dt0:.4e} ms (element {state.dt_crit_elem[0]}, "
-                f"part {state.dt_crit_elem[1]}); initial kinetic energy {state.e0:.6g} J")
+    by = (f"contact {state.dt_contact}, a node closing on it" if state.dt_contact else
+          f"element {state.dt_crit_elem[0]}, part {state.dt_crit_elem[1]}")
+    outputs.log(f"initial time step {state.dt0:.4e} ms ({by}); initial kinetic energy "
+                f"{state.e0:.6g} J")
     ms = state.mass_scaling
     if model.controls.dt2ms > 0.0:
         outputs.log("DT2MS > 0 (mass scaling of every element to one step) runs as "
@@ -255,8 +257,10 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
                               f"(element {elem}, part {pid})", element=elem, part=pid)
         if dtmin > 0.0 and not plan.erode and state.dt_next < dtmin * state.dt0:
             elem, pid = state.dt_crit_elem
+            by = (f"contact {state.dt_contact} (a node closing on it fast: its kinematic "
+                  "limit)" if state.dt_contact else f"element {elem} (part {pid})")
             raise Termination(ERROR, f"time step {state.dt_next:.4e} ms below DTMIN "
-                              f"({dtmin:g} x initial) set by element {elem} (part {pid}) "
+                              f"({dtmin:g} x initial) set by {by} "
                               f"at t={state.t:.6g} ms", element=elem, part=pid)
         outputs.record(state)
         progress.update(state.t, state.cycle, dt)

@@ -445,6 +445,12 @@ class RunOutputs:
             "contact_search": {
                 str(c.cid): {"sorts": c.n_sorts, "near_filters": c.n_filters}
                 for c in self.asm.contacts if hasattr(c, "n_filters")},
+            # cycles in which a contact's kinematic limit set the step, and its smallest
+            "contact_step": {
+                str(c.cid): {"cycles": c.n_step_limited,
+                             "dt_min_ms": (c.dt_kin_min if np.isfinite(c.dt_kin_min)
+                                           else None)}
+                for c in self.asm.contacts if hasattr(c, "n_step_limited")},
             **(extra or {}),
         }
         quality, reasons = assess(summary, self.thresholds)

@@ -32,7 +32,8 @@ from hollowbody import __version__
 from hollowbody.errors import UserInputError
 
 MAGIC = b"HOLLOWBODY-D3DUMP\n"
-FORMAT = 1
+#: 2: contacts carry their kinematic step limit; State its controlling contact
+FORMAT = 2
 _NAME = re.compile(r"^d3dump(\d+)$")
 
 

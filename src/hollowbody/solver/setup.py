@@ -12,7 +12,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hollowbody.elements.solid_step_factor import volumetric_step_factor
+from hollowbody.elements.solid_step_factor import (
+    group_min_axes,
+    restrained_axes,
+    volumetric_step_factor,
+)
 from hollowbody.errors import DeckError
 from hollowbody.model.mass import hex_volumes, lumped_node_mass, quad_areas, spread_element_mass
 from hollowbody.model.model import Model
@@ -99,7 +103,8 @@ def assemble(model: Model) -> Assembly:
                    deformable=np.ones(model.n_nodes, dtype=bool), tssfac=model.controls.tssfac,
                    node_x0=x0)
     n = model.n_nodes
-    for g in model.solid_groups:
+    axes = restrained_axes([g.conn for g in model.solid_groups])
+    for g, g_axes in zip(model.solid_groups, axes):
         for k, c in _solid_kind_counts(g.conn).items():
             counts[k] += c
         mat = model.material_of(g.pid)
@@ -117,9 +122,9 @@ def assemble(model: Model) -> Assembly:
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
         rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
-        # the lone-element bound; why the restrained-axes relaxation is not used by
-        # default: hollowbody.elements.solid_step_factor
-        rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves)
+        # the volumetric modes of free faces: hollowbody.elements.solid_step_factor
+        rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves,
+                                                min_axes=group_min_axes(g.conn, g_axes))
         asm.elements.append(rt)
     for g in model.shell_groups:
         counts["shells"] += int(g.conn.shape[0])

@@ -29,7 +29,7 @@ from hollowbody.solver.monitors import Monitors
 
 #: Scalars and arrays of the State itself that a snapshot carries.
 STATE_SCALARS = ("t", "cycle", "dt", "dt_next", "dt0", "dt_min", "dtmin_abs", "dt_crit_elem",
-                 "ext_work", "e0", "n_eroded", "timing")
+                 "dt_contact", "ext_work", "e0", "n_eroded", "timing")
 STATE_ARRAYS = ("x", "v", "f", "w", "mom", "node_mass", "inv_m", "node_rot_inertia", "inv_i")
 
 
@@ -40,7 +40,9 @@ class State:
     t: ms; cycle: completed cycles; dt: the last step taken (ms); dt_next: the
     next step, TSSFAC * smallest critical step (ms); dt0: the first step;
     dt_min: the smallest step taken; dtmin_abs: DTMIN x dt0 (ms, 0 = off);
-    dt_crit_elem: (element id, part id) that set dt_next; ext_work: J work of
+    dt_crit_elem: (element id, part id) whose critical step is the smallest;
+    dt_contact: id of the contact whose kinematic limit set dt_next below that
+    element's TSSFAC x step (0: none; :mod:`hollowbody.contact.kinematic_step`); ext_work: J work of
     prescribed motions; e0: J initial kinetic energy; n_eroded: deleted elements;
     timing: wall seconds per force pass; events: (level, message) produced by
     the step for the observers (drained by the run loop); parts: {key: object
@@ -66,6 +68,7 @@ class State:
     dt_min: float = np.inf
     dtmin_abs: float = 0.0
     dt_crit_elem: tuple[int, int] = (-1, -1)
+    dt_contact: int = 0
     ext_work: float = 0.0
     e0: float = 0.0
     n_eroded: int = 0

@@ -10,7 +10,8 @@ The cycle from t^n to t^{n+1} (order as in the LS-DYNA / OpenRadioss engines):
    tied slaves by their segments);
 4. forces f^{n+1}: element internal + hourglass + bulk viscosity, contact,
    ties; rigid-body resultants; mass scaling; the next step
-   dt^{n+1} = TSSFAC * min dt_crit.
+   dt^{n+1} = TSSFAC * min dt_crit, lowered where a contact closes fast
+   (no node crosses its contact band in one step).
 
 ``plan`` is the static :class:`~hollowbody.solver.setup.Assembly`; everything
 that changes lives in ``state`` (:class:`~hollowbody.solver.state.State`).
@@ -153,6 +154,7 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
             dt_crit, elem, pid = ms.critical_step()
     state.dt_next = plan.tssfac * dt_crit
     state.dt_crit_elem = (elem, pid)
+    state.dt_contact = _contact_limit(plan, state)
     if ended is not None:
         raise ended
     if ms.target > 0.0 and ms.percent_added > model.controls.endmas:
@@ -168,6 +170,21 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
                  " (no element of the node: from a contact or a load)")
         raise Termination(ERROR, f"non-finite force at node {nid}{where} at t={state.t:.6g} "
                           "ms", node=nid, element=elem, part=pid)
+
+
+def _contact_limit(plan, state) -> int:  # noqa: ANN001
+    """Lower ``state.dt_next`` to the contacts' kinematic limit (no node crosses its
+    contact band in one step, :mod:`hollowbody.contact.kinematic_step`); returns the
+    id of the contact that set it (0: none) and counts the cycle on it."""
+    best = None
+    for c in plan.contacts:
+        if c.dt_kin < state.dt_next:
+            state.dt_next, best = c.dt_kin, c
+    if best is None:
+        return 0
+    best.n_step_limited += 1
+    best.dt_kin_min = min(best.dt_kin_min, best.dt_kin)
+    return int(best.cid)
 
 
 def element_at(plan, node: int) -> tuple[int, int]:  # noqa: ANN001
