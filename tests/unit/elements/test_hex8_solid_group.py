@@ -44,7 +44,8 @@ def test_start_call_with_zero_dt_and_velocity():
     f = np.zeros_like(x)
     dt, i, neg = rt.add_forces(x.copy(), np.zeros_like(x), 0.0, f)
     c = math.sqrt(0.01 * 0.7 / (1.3 * 0.4) / 1e-6)
-    assert dt == pytest.approx(2.0 / c, rel=1e-12)
+    # at rest the step keeps the linear bulk viscosity Q2 c (default Q2 0.06)
+    assert dt == pytest.approx(2.0 / (c * (0.06 + math.sqrt(1.0 + 0.06**2))), rel=1e-12)
     assert 0 <= i < 8 and neg == -1
     assert np.all(f == 0.0) and np.all(rt.stress == 0.0)
     assert rt.internal_energy == 0.0 and rt.hourglass_energy == 0.0
@@ -166,7 +167,8 @@ def test_bulk_viscosity_time_step_and_pressure():
     v[:, 2] = rate * x0[:, 2]
     f = np.zeros_like(x0)
     dt, _, _ = rt.add_forces(x0.copy(), v, 0.0, f)
-    qv = 0.06 * c + 1.5 * h * abs(rate)
+    # the quadratic term's tangent 2 Q1 l |tr D| (twice its secant) enters the step
+    qv = 0.06 * c + 2.0 * 1.5 * h * abs(rate)
     assert dt == pytest.approx(h / (qv + math.sqrt(qv**2 + c**2)), rel=1e-12)
     q = 1e-6 * h * (1.5 * h * rate**2 - 0.06 * c * rate)
     # the pressure q resists the compression: it pushes the top face (z = h) up with
