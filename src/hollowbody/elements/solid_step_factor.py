@@ -20,28 +20,26 @@ k    mesh                       K >> G       nu = 0.3
 3    2 x 2 x 2 ... 4 x 4 x 4    0.815-0.844  0.937-0.970
 ===  =========================  ===========  ===========
 
-The engine uses the lone-element bound ``sqrt(M / max(M, 3K))`` for every
-group (1 at nu = 0, 0.734 at nu = 0.3, 0.577 for rubber): it is a bound for
-any mesh (an assembled mesh's omega_max is below its elements' largest), and
-with TSSFAC 0.9 it keeps omega_max dt / 2 <= 0.9 on every mesh above (0.9 for
-the lone element, 0.58-0.86 for the others).
+The engine uses the restrained-axes factor ``gamma = 3 - k / 3`` for k <= 2 (3,
+2.67, 2.33) and 1.5 for k = 3, with k the group's ``min_axes`` (the smallest
+count over its elements, faces shared with any solid group counting): its
+omega_max dt / 2 stays <= 0.96 on the meshes above at TSSFAC 0.9, and long runs
+with random and alternating velocities and small-strain impacts stay stable
+with the default bulk viscosity (gamma = 2 at k = 2 diverged on a 2 x 2 x 1
+rubber plate). It gives LS-DYNA's step to an elastic nu 0.3 block and 0.816 of
+it to a rubber block. The lone-element bound ``sqrt(M / max(M, 3K))`` (k = 0:
+1 at nu = 0, 0.734 at nu = 0.3, 0.577 for rubber) is a bound for any mesh.
 LS-DYNA's rule (factor 1) is not stable for rubber: free rubber meshes
 diverge within 4-30 cycles at TSSFAC 0.9, with or without the bulk viscosity.
 
-The restrained-axes relaxation ``gamma = 3 - k / 3`` for k <= 2 (3, 2.67,
-2.33) and 1.5 for k = 3 (``min_axes``) is what the element allows in small
-strain: its omega_max dt / 2 stays <= 0.96 on the meshes above, and long runs
-with random and alternating velocities and small-strain impacts stay stable
-with the default bulk viscosity (gamma = 2 at k = 2 diverged on a 2 x 2 x 1
-rubber plate). It would give LS-DYNA's step to an elastic nu 0.3 block and
-0.816 of it to a rubber block (1.41 x the lone-element step). It is not the
-default, because at the larger step (a) the SOFT=1 contact of the soft-block
-verification lets nodes of a crushed fat block through a heavy plate (any
-factor above 0.65), (b) the elastic cube struck by a rigid plate gives back
-8.8 % more contact energy than it took (quality warning), and (c) a fat block
-slammed at 40 mm/ms onto a clamped face ends at energy ratio 1.46 (the
-lone-element step: 1.06; at 60 mm/ms the lone-element step reaches 1.54 too,
-so large compression of MAT_181 has its own limit, see docs/elements.md).
+The larger step needs two things elsewhere (docs/elements.md, "Time step"): the
+step's bulk-viscosity term continuous in tr D
+(:func:`hollowbody.elements.time_step.critical_time_step`; LS-DYNA's
+compression-only term made the step alternate and pumped the highest mode of a
+block dropped on a wall), and the contacts' kinematic limit
+(:mod:`hollowbody.contact.kinematic_step`; a plate closing at 20-30 mm/ms on a
+soft block met the contact after a large step, the step fell at once and nodes
+went through).
 Degenerate elements (wedges, tetrahedra) always have min_axes 0.
 """
 

@@ -1,7 +1,14 @@
 """Critical time step of solid elements (LS-DYNA's rule with bulk viscosity).
 
-``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c + Q1 l |tr D|`` for
-a compressing element (``tr D < 0``), else ``Q = 0``. ``L_e`` is the
+``dt_crit = L_e / (Q + sqrt(Q^2 + c^2))`` with ``Q = Q2 c`` always and
+``Q = Q2 c + 2 Q1 l |tr D|`` for a compressing element (``tr D < 0``). LS-DYNA
+adds Q for compressing elements only and the quadratic term's secant
+``Q1 l |tr D|``; here the step is continuous in tr D (in the highest mode tr D
+changes sign every cycle, and a step that alternates with it by 6 % pumps that
+mode, see tests/verification/solids/test_solid_step_jitter.py), and the
+quadratic term enters with its tangent, twice the secant (a damper acting on
+the lagged velocity is stable only below 2 / tangent rate; with the secant a
+crushed MAT_181 block diverged). ``L_e`` is the
 characteristic length (V / A_max for hexahedra and wedges, the smallest
 altitude 3 V / A_max for tetrahedra), ``l = V^(1/3)`` the bulk-viscosity
 length, ``c`` the material's current dilatational wave speed. The solver
@@ -37,7 +44,8 @@ def critical_time_step(length, c, l_visc, trd, q1, q2):
 
 def element_time_steps(conn: np.ndarray, x: np.ndarray, c: np.ndarray | float,
                        shape: np.ndarray | None = None) -> np.ndarray:
-    """Critical time steps (e,) ms of elements at rest (tr D = 0, so Q = 0).
+    """L_e / c (e,) ms: LS-DYNA's critical steps of elements at rest (its Q = 0 at
+    tr D = 0; the engine's step at rest is this over ``Q2 + sqrt(1 + Q2^2)``).
 
     conn: (e, 8) int node indices (canonical, see
     :func:`hollowbody.elements.hex8_kinematics.canonical_connectivity`);
