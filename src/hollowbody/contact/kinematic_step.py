@@ -26,7 +26,10 @@ reaches the mid-surface. Unlike the nodal rule ``(B - p) / (2 w)`` of
 Radioss's interface step (which shrinks with the penetration p and can
 collapse under a deep node) the travel allowed inside the band does not
 shrink. It binds only where a contact closes fast on a coarse mesh; in a car
-crash mesh (steps of ~1 us) it never does.
+crash mesh (steps of ~1 us) it never does. The pairs are only visited when it
+can bind: a closing speed is at most twice the largest nodal speed of the
+contact, so no pair limits a step below ``KIN_FRACTION B_min / (2 v_max)``
+(:func:`narrowest_band`, :func:`max_speed2`).
 
 Units: mm, ms, mm/ms. Kernels: numba, no allocation in the loops.
 """
@@ -130,6 +133,30 @@ def approach_step_serial(act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two
     """Serial :func:`approach_step` (small passes: no thread start-up)."""
     return _pair_range(0, act.shape[0], act, x, v, nodes, n_thick, seg, s_thick, s_depth,
                        s_two, cen, nrm, rad2, ptr, cand, alpha)
+
+
+@njit(cache=True)
+def max_speed2(v):
+    """Largest squared speed (mm/ms)^2 of the rows of v (L, 3) float64 mm/ms."""
+    best = 0.0
+    for i in range(v.shape[0]):
+        s = v[i, 0] * v[i, 0] + v[i, 1] * v[i, 1] + v[i, 2] * v[i, 2]
+        if s > best:
+            best = s
+    return best
+
+
+def narrowest_band(n_thick: np.ndarray, s_thick: np.ndarray, s_depth: np.ndarray,
+                   s_two: np.ndarray) -> float:
+    """Narrowest positive contact band (mm) a pair of the pass can have (inf: none):
+    with the thinnest node, reach over two-sided segments, reach plus release depth
+    over one-sided ones. Every pair's dt_kin is at least KIN_FRACTION times this over
+    its closing speed, which is at most twice the largest nodal speed."""
+    if n_thick.size == 0 or s_thick.size == 0:
+        return np.inf
+    band = 0.5 * (float(n_thick.min()) + s_thick) + np.where(s_two != 0, 0.0, s_depth)
+    band = band[band > 0.0]
+    return float(band.min()) if band.size else np.inf
 
 
 def work_arrays(n_rows: int) -> tuple[np.ndarray, np.ndarray]:

@@ -59,6 +59,8 @@ from hollowbody.contact.kinematic_step import (
     KIN_FRACTION,
     approach_step,
     approach_step_serial,
+    max_speed2,
+    narrowest_band,
     work_arrays,
 )
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
@@ -192,6 +194,8 @@ class _Pass:
         #: (S,) bool: False for segments of deleted (eroded, failed) elements
         self.seg_alive = np.ones(nseg, dtype=bool)
         self._kin_dt, self._kin_row = work_arrays(ns)
+        #: mm: narrowest contact band of the pass (None: to be computed)
+        self.kin_band: float | None = None
 
 
 class ContactRuntime:
@@ -389,6 +393,7 @@ class ContactRuntime:
         self.dt_kin_node = -1
         self.n_step_limited = 0
         self.dt_kin_min = np.inf
+        self._kin_live: list[_Pass] = []
 
     # ------------------------------------------------------------------
     def set_stiffening(self, fraction: float) -> None:
@@ -452,6 +457,7 @@ class ContactRuntime:
             p.s_depth = np.ascontiguousarray(self.penmax * p.elem_depth)
             tmax = float(p.n_thick.max()) if p.nodes.shape[0] else 0.0
             p.capture = np.maximum(p.s_depth, 0.5 * (tmax + p.s_thick))
+            p.kin_band = None
         if exclusions:
             self._exclude_junctions(self._x0)
         self._first = True
@@ -578,7 +584,7 @@ class ContactRuntime:
                 p.cen, p.nrm, p.rad2, p.warp, p.slab, p.nptr, p.ncand, p.nprev, p.oseg, p.ow,
                 p.ogap, p.oentry, p.othru, p.gold, p.sold, p.orel, p.odel)
             scatter_weights(p.act, p.nodes, p.seg, p.oseg, p.ow, self._wsum)
-        self._approach_step(live)
+        self._kin_live = live
         for p in live:
             (force_pass if self._threaded(p) else force_pass_serial)(
                 p.act, self._vl, dt, self._dtc, p.nodes, p.n_k, p.n_mass, p.seg, p.s_k,
@@ -594,9 +600,23 @@ class ContactRuntime:
         self.energy += finish(self.nodes, self._fl, self._fprev, self._xl, self._xprev, f)
 
 
-    def _approach_step(self, live: list[_Pass]) -> None:
-        """This cycle's kinematic step limit over the passes (``dt_kin``, ``dt_kin_node``)."""
+    def kinematic_step(self, dt_next: float) -> float:
+        """This cycle's kinematic step limit (ms) over the passes, after
+        :meth:`add_forces` (sets ``dt_kin``, ``dt_kin_node``; see
+        :mod:`hollowbody.contact.kinematic_step`). ``dt_next``: the step the solver
+        would take; when the bound ``KIN_FRACTION B_min / (2 v_max)`` is above it no
+        pair can limit it, and the pairs are not visited (returns inf)."""
         self.dt_kin, self.dt_kin_node = np.inf, -1
+        live = self._kin_live
+        if not live:
+            return np.inf
+        for p in live:
+            if p.kin_band is None:
+                p.kin_band = narrowest_band(p.n_thick, p.s_thick, p.s_depth, p.s_two)
+        band = min(p.kin_band for p in live)
+        vmax = 2.0 * float(np.sqrt(max_speed2(self._vl)))
+        if not np.isfinite(band) or KIN_FRACTION * band >= vmax * dt_next:
+            return np.inf
         for p in live:
             d, row = (approach_step if self._threaded(p) else approach_step_serial)(
                 p.act, self._xl, self._vl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth,
@@ -604,6 +624,7 @@ class ContactRuntime:
                 p._kin_row)
             if d < self.dt_kin:
                 self.dt_kin, self.dt_kin_node = float(d), int(self.nodes[p.nodes[row]])
+        return self.dt_kin
 
 
 def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray

@@ -178,8 +178,9 @@ def _contact_limit(plan, state) -> int:  # noqa: ANN001
     id of the contact that set it (0: none) and counts the cycle on it."""
     best = None
     for c in plan.contacts:
-        if c.dt_kin < state.dt_next:
-            state.dt_next, best = c.dt_kin, c
+        d = c.kinematic_step(state.dt_next)
+        if d < state.dt_next:
+            state.dt_next, best = d, c
     if best is None:
         return 0
     best.n_step_limited += 1

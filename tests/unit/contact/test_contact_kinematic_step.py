@@ -17,6 +17,8 @@ from hollowbody.contact.kinematic_step import (
     KIN_FRACTION,
     approach_step,
     approach_step_serial,
+    max_speed2,
+    narrowest_band,
     work_arrays,
 )
 
@@ -76,3 +78,18 @@ def test_node_beside_the_segment_does_not_count():
     contact: no limit; just inside it is."""
     assert limit(0.6, -10.0, node_x=1.5)[0] == math.inf
     assert limit(0.6, -10.0, node_x=1.4)[0] == pytest.approx(0.05, rel=1e-12)
+
+
+def test_narrowest_band_bounds_every_pair():
+    """The pass-level bound: thinnest node 1 mm; two-sided 2 mm segment: reach 1.5;
+    one-sided face (thickness 0, depth 0.4): 0.5 + 0.4 = 0.9; a pair with no band
+    (zero thickness and depth) never limits and is left out."""
+    band = narrowest_band(np.array([1.0, 3.0]), np.array([2.0, 0.0, 0.0, 0.0]),
+                          np.array([0.0, 0.4, 0.0, 0.0]), np.array([1, 0, 1, 0], np.int8))
+    assert band == pytest.approx(0.9, rel=1e-12)
+    assert narrowest_band(np.array([0.0]), np.array([0.0]), np.array([0.0]),
+                          np.array([1], np.int8)) == math.inf
+    assert max_speed2(np.array([[3.0, 4.0, 0.0], [0.0, 1.0, 1.0]])) == 25.0
+    # the bound holds for the single pairs above: dt_kin >= alpha B / (2 v_max)
+    for z, vz in ((5.0, -10.0), (0.6, -10.0), (-0.6, 10.0)):
+        assert limit(z, vz)[0] >= KIN_FRACTION * 1.0 / (2.0 * 10.0)
