@@ -81,12 +81,12 @@ def test_node_beside_the_segment_does_not_count():
 
 
 def test_narrowest_band_bounds_every_pair():
-    """The pass-level bound: thinnest node 1 mm; two-sided 2 mm segment: reach 1.5;
-    one-sided face (thickness 0, depth 0.4): 0.5 + 0.4 = 0.9; a pair with no band
-    (zero thickness and depth) never limits and is left out."""
-    band = narrowest_band(np.array([1.0, 3.0]), np.array([2.0, 0.0, 0.0, 0.0]),
+    """The pass-level bound: thinnest node 0 mm; two-sided 2 mm segment: reach 1;
+    one-sided face (thickness 0, depth 0.4): 0 + 0.4; pairs with no band (zero
+    thickness and depth) never limit and are left out."""
+    band = narrowest_band(np.array([0.0, 3.0]), np.array([2.0, 0.0, 0.0, 0.0]),
                           np.array([0.0, 0.4, 0.0, 0.0]), np.array([1, 0, 1, 0], np.int8))
-    assert band == pytest.approx(0.9, rel=1e-12)
+    assert band == pytest.approx(0.4, rel=1e-12)
     assert narrowest_band(np.array([0.0]), np.array([0.0]), np.array([0.0]),
                           np.array([1], np.int8)) == math.inf
     assert max_speed2(np.array([[3.0, 4.0, 0.0], [0.0, 1.0, 1.0]])) == 25.0
