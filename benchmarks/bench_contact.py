@@ -7,7 +7,9 @@ nodes in contact), with random velocities and friction, so every cycle runs
 the full narrow phase, friction and force scatter. The bucket sort runs every
 ``contact_sort_interval`` (100) cycles and its cost is included. Printed: mean
 wall time, the median (with the sort's share added; robust on a busy machine)
-and the process CPU time.
+and the process CPU time. Then the contact's kinematic step limit forced to visit
+every near pair (``kinematic_step(inf)``; in a run it visits them only when it can
+bind), median per slave node per cycle.
 
 Run:  python benchmarks/bench_contact.py [--cycles 300] [--kind nodes_to_surface]
 """
@@ -41,9 +43,11 @@ def build(kind: str, n_block: int = 70, n_plate: int = 100):
     return model, rt
 
 
-def run(kind: str, cycles: int, threads: int) -> tuple[float, float, float, int, int]:
+def run(kind: str, cycles: int, threads: int
+        ) -> tuple[float, float, float, int, int, float]:
     """Per slave node per cycle: (mean wall us, median wall us, mean process CPU us);
-    checked nodes; nodes in contact. The median is robust to a busy machine."""
+    checked nodes; nodes in contact; median wall us of the forced kinematic step
+    limit. The median is robust to a busy machine."""
     numba.set_num_threads(threads)
     model, rt = build(kind)
     rt.parallel_min_nodes = 0 if threads > 1 else 1 << 62
@@ -54,21 +58,28 @@ def run(kind: str, cycles: int, threads: int) -> tuple[float, float, float, int,
     f = np.zeros((n, 3))
     dt = 1.0e-4
     rt.add_forces(x, v, dt, 0, f)  # compile / first sort
+    rt.kinematic_step(np.inf)  # compile
     per = np.empty(cycles)
-    c0 = time.process_time()
+    kin = np.empty(cycles)
+    cpu = 0.0
     for cycle in range(1, cycles + 1):
         f[:] = 0.0
+        c0 = time.process_time()
         t = time.perf_counter()
         rt.add_forces(x, v, dt, cycle, f)
         per[cycle - 1] = time.perf_counter() - t
+        cpu += time.process_time() - c0
+        t = time.perf_counter()
+        rt.kinematic_step(np.inf)
+        kin[cycle - 1] = time.perf_counter() - t
         x += dt * v
-    cpu = time.process_time() - c0
     n_slave = sum(p.nodes.shape[0] for p in rt.passes)
     scale = 1e6 / n_slave
     # the median misses the sort (1 cycle in 100): add its share to it
     sorts = per[np.arange(cycles) % rt.sort_interval == rt.sort_interval - 1]
     med = np.median(per) + (sorts.mean() - np.median(per)) / rt.sort_interval
-    return per.mean() * scale, med * scale, cpu / cycles * scale, n_slave, rt.n_active
+    return (per.mean() * scale, med * scale, cpu / cycles * scale, n_slave, rt.n_active,
+            float(np.median(kin)) * scale)
 
 
 def main() -> None:
@@ -82,10 +93,11 @@ def main() -> None:
     for threads in (1, 2):
         if threads > avail:
             break
-        us, med, cpu, n_slave, active = run(args.kind, args.cycles, threads)
+        us, med, cpu, n_slave, active, kin = run(args.kind, args.cycles, threads)
         print(f"threads={threads}: {us:.3f} us per slave node per cycle "
               f"(median {med:.3f}; CPU {cpu:.3f} summed over threads; {n_slave} checked "
-              f"nodes, {active} in contact; {us * n_slave / 1000:.2f} ms per cycle)")
+              f"nodes, {active} in contact; {us * n_slave / 1000:.2f} ms per cycle); "
+              f"kinematic step limit, every near pair visited: median {kin:.3f}")
 
 
 if __name__ == "__main__":
