@@ -599,7 +599,6 @@ class ContactRuntime:
         self.n_active = n_act
         self.energy += finish(self.nodes, self._fl, self._fprev, self._xl, self._xprev, f)
 
-
     def kinematic_step(self, dt_next: float) -> float:
         """This cycle's kinematic step limit (ms) over the passes, after
         :meth:`add_forces` (sets ``dt_kin``, ``dt_kin_node``; see
