@@ -55,14 +55,7 @@ from hollowbody.contact.frames import (
     segment_frames_of,
     segment_frames_of_parallel,
 )
-from hollowbody.contact.kinematic_step import (
-    KIN_FRACTION,
-    approach_step,
-    approach_step_serial,
-    max_speed2,
-    narrowest_band,
-    work_arrays,
-)
+from hollowbody.contact.kinematic_step import passes_step, work_arrays
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
@@ -601,28 +594,13 @@ class ContactRuntime:
 
     def kinematic_step(self, dt_next: float) -> float:
         """This cycle's kinematic step limit (ms) over the passes, after
-        :meth:`add_forces` (sets ``dt_kin``, ``dt_kin_node``; see
-        :mod:`hollowbody.contact.kinematic_step`). ``dt_next``: the step the solver
-        would take; when the bound ``KIN_FRACTION B_min / (2 v_max)`` is above it no
-        pair can limit it, and the pairs are not visited (returns inf)."""
-        self.dt_kin, self.dt_kin_node = np.inf, -1
-        live = self._kin_live
-        if not live:
-            return np.inf
-        for p in live:
-            if p.kin_band is None:
-                p.kin_band = narrowest_band(p.n_thick, p.s_thick, p.s_depth, p.s_two)
-        band = min(p.kin_band for p in live)
-        vmax = 2.0 * float(np.sqrt(max_speed2(self._vl)))
-        if not np.isfinite(band) or KIN_FRACTION * band >= vmax * dt_next:
-            return np.inf
-        for p in live:
-            d, row = (approach_step if self._threaded(p) else approach_step_serial)(
-                p.act, self._xl, self._vl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth,
-                p.s_two, p.cen, p.nrm, p.rad2, p.nptr, p.ncand, KIN_FRACTION, p._kin_dt,
-                p._kin_row)
-            if d < self.dt_kin:
-                self.dt_kin, self.dt_kin_node = float(d), int(self.nodes[p.nodes[row]])
+        :meth:`add_forces` (sets ``dt_kin``, ``dt_kin_node``: the model node index;
+        :func:`hollowbody.contact.kinematic_step.passes_step`). ``dt_next``: the step
+        the solver would take (the pairs are visited only if the limit can be below
+        it; inf otherwise)."""
+        self.dt_kin, row = passes_step(self._kin_live, self._xl, self._vl, dt_next,
+                                       self._threaded)
+        self.dt_kin_node = int(self.nodes[row]) if row >= 0 else -1
         return self.dt_kin
 
 
