@@ -17,10 +17,14 @@ act on them: they get a penalty force (``add_forces``, before the bodies gather
 their resultants). Per node: normal stiffness k = 0.1 RWKSF M / (N dt0^2) (M the
 body's mass, N its slave nodes, dt0 the first step; all N nodes on the wall give
 omega dt0 = 0.32, stable), a critical normal damping for the body's
-translation on the nodes in contact, no adhesion; friction min(FRIC F_n,
-m |v_t| / dt) against the tangential velocity (m = M / nodes in contact; FRIC = 1:
-the stick cap alone). The work of these forces (trapezoidal) is also
-``contact_energy`` (stored plus dissipated).
+translation on the nodes in contact, no adhesion; friction by a stored
+tangential spring of the same stiffness and damping (elastic stick, then
+Coulomb): per node in contact ``f_e <- f_e - k v_t dt``, trial ``f_e - c v_t``,
+capped at FRIC F_n (the stored ``f_e`` then the capped trial; FRIC = 1: no cap,
+no sliding); a node that leaves the wall forgets it. Without the stored part (a
+friction that only stopped the tangential velocity of each step) a lightly
+loaded foot crept under a small oscillating tangential load. The work of these
+forces (trapezoidal) is also ``contact_energy`` (stored plus dissipated).
 """
 
 from __future__ import annotations
@@ -48,7 +52,8 @@ class RigidWallTerm:
     rwforc); ``contact_energy`` J: minus the work of the wall's forces.
     """
 
-    STATE_FIELDS = ("contact_energy", "dt_prev", "f_prev", "k", "force", "force_constraint")
+    STATE_FIELDS = ("contact_energy", "dt_prev", "f_prev", "ft", "k", "force",
+                    "force_constraint")
 
     def __init__(self, model, plan, wall: RigidWallDef) -> None:  # noqa: ANN001
         self.wall = wall
@@ -75,6 +80,8 @@ class RigidWallTerm:
                 rigid_rows.append(on)
         self.rigid_nodes = [r.astype(np.int64) for r in rigid_rows]
         self.f_prev = [np.zeros((r.size, 3)) for r in rigid_rows]
+        #: (c, 3) kN per body: the stored (elastic) tangential friction force per node
+        self.ft = [np.zeros((r.size, 3)) for r in rigid_rows]
         self.k = np.full(len(self.bodies), np.nan)
         self.contact_energy = 0.0
         self.dt_prev = 0.0
@@ -163,8 +170,11 @@ class RigidWallTerm:
             if on and not np.isnan(self.k[b]):
                 gap = (state.x[nodes] - self.tail) @ self.n
                 hit = gap < 0.0
+                ft = self.ft[b]
                 if hit.any():
-                    f_new[hit] = self._penalty(bd, self.k[b], gap[hit], v[hit], dt)
+                    f_new[hit], ft[hit] = self._penalty(bd, self.k[b], gap[hit], v[hit], dt,
+                                                        ft[hit])
+                ft[~hit] = 0.0
             if dt > 0.0:
                 self.contact_energy -= dt * 0.5 * float(((self.f_prev[b] + f_new) * v).sum())
             self.f_prev[b] = f_new
@@ -174,22 +184,27 @@ class RigidWallTerm:
         return np.inf, -1, -1
 
     def _penalty(self, bd, k: float, gap: np.ndarray, v: np.ndarray,  # noqa: ANN001
-                 dt: float) -> np.ndarray:
-        """Penalty forces (c, 3) kN on the body's nodes in contact (gap < 0 mm)."""
+                 dt: float, ft: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Penalty forces (c, 3) kN on the body's nodes in contact (gap < 0 mm) and
+        their new stored tangential forces (c, 3) kN from the old ones ``ft``."""
         m_share = bd.mass / gap.size
         vn = v @ self.n
         c = 2.0 * PENALTY_DAMPING * np.sqrt(k * m_share)
         fn = np.maximum(k * (-gap) - c * vn, 0.0)
         f = fn[:, None] * self.n
         fric = self.wall.fric
-        if fric > 0.0 and dt > 0.0:
-            vt = v - vn[:, None] * self.n
-            speed = np.sqrt((vt * vt).sum(axis=1))
-            cap = m_share * speed / dt
-            ft = cap if fric >= 1.0 else np.minimum(fric * fn, cap)
-            moving = speed > 0.0
-            f[moving] -= (ft[moving] / speed[moving])[:, None] * vt[moving]
-        return f
+        if fric <= 0.0 or dt <= 0.0:
+            return f, np.zeros_like(ft)
+        vt = v - vn[:, None] * self.n
+        fe = ft - (ft @ self.n)[:, None] * self.n - k * dt * vt
+        trial = fe - c * vt
+        if fric < 1.0:
+            mag = np.sqrt((trial * trial).sum(axis=1))
+            slip = mag > fric * fn
+            if slip.any():
+                trial[slip] *= (fric * fn[slip] / mag[slip])[:, None]
+                fe[slip] = trial[slip]
+        return f + trial, fe
 
     def normal_force(self) -> float:
         """kN: the wall's normal force on the model in the last cycle (pushing > 0)."""
