@@ -78,6 +78,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--imperfection", type=float, default=None,
                    help="amplitude in mm of the walls' buckling-mode offsets (default 0.1 x "
                         "thickness; 0 gives flat walls)")
+    g.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
+                   help="hourglass control of the walls: 0 none (LS-DYNA's default, viscous "
+                        "IHQ 1 QH 0.1), 4 stiffness form (default 0)")
+    g.add_argument("--wall-hourglass-qm", type=float, default=0.1,
+                   help="QM of --wall-hourglass (default 0.1)")
     g.add_argument("--mass-preserving", action=argparse.BooleanOptionalAction, default=True,
                    help="walls carry the solid block's mass; --no-mass-preserving keeps the "
                         "tissue density instead (default: mass preserving)")
@@ -112,6 +117,8 @@ def main(args: argparse.Namespace) -> int:
                           elements_per_edge=args.elements_per_edge,
                           imperfection=args.imperfection,
                           mass_preserving=args.mass_preserving,
+                          wall_hourglass_ihq=args.wall_hourglass,
+                          wall_hourglass_qh=args.wall_hourglass_qm,
                           mass_scaling=args.mass_scaling, dtmin=args.dtmin,
                           thickness_update=args.thickness_update)
     except ValueError as exc:

@@ -54,6 +54,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="simulated time in ms (default: the block's)")
     p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=False,
                    help="write ParaView states of every run (default: no)")
+    p.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
+                   help="hourglass control of the hollow walls: 0 none (LS-DYNA's default, "
+                        "viscous IHQ 1 QH 0.1), 4 stiffness form QM 0.1 (default 0)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=int, default=1,
                    help="runs at a time (default 1: serial, comparable wall times)")
@@ -81,8 +84,9 @@ def main(args: argparse.Namespace) -> int:
     if args.end_time is not None and not args.end_time > 0.0:
         raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
     wall = hollow_from_calibration(args.hollow_from) if args.hollow_from else None
+    options = {"wall_hourglass_ihq": args.wall_hourglass} if args.wall_hourglass else {}
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time,
-                              vtk=args.vtk)
+                              vtk=args.vtk, options=options)
     try:
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], wall)

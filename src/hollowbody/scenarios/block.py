@@ -62,6 +62,8 @@ IMPACTOR_ELEM0 = 1_000_001
 #: instead of 17,861 (erosion only at 1 % area), peak force and maximum displacement
 #: within 1 % (docs/block.md).
 DTMIN_HOLLOW = 0.05
+#: *HOURGLASS id of the hollow block's walls (when BlockConfig.wall_hourglass_ihq > 0)
+WALL_HGID = 2
 
 
 @dataclass
@@ -92,6 +94,11 @@ class BlockConfig:
     imperfection: float | None = None  # mm panel buckling-mode offset; None -> 0.1 thickness
     mass_preserving: bool = True
     self_contact: bool = True
+    #: walls' *HOURGLASS IHQ (0: none, LS-DYNA's default viscous form IHQ 1, QH 0.1) and
+    #: its QM; IHQ 4 QM 0.1 keeps the hollow block's hourglass energy at 4-7 % of the
+    #: internal energy at 40-100 km/h where IHQ 1 reaches 13-20 % (docs/block.md)
+    wall_hourglass_ihq: int = 0
+    wall_hourglass_qh: float = 0.1
     #: *CONTROL_TERMINATION DTMIN (fraction of the initial step; 0 off); None ->
     #: DTMIN_HOLLOW for hollow blocks (with erosion: wall elements whose step falls
     #: below it are deleted), off for solid ones
@@ -120,6 +127,9 @@ class BlockConfig:
             raise ValueError("mesh size must be positive")
         if not 0.0 <= self.edge_radius < 0.5 * IMPACTOR_DIAMETER:
             raise ValueError("edge radius must be in [0, 45) mm")
+        if self.wall_hourglass_ihq not in (0, 1, 2, 3, 4, 5) or self.wall_hourglass_qh < 0.0:
+            raise ValueError("wall hourglass IHQ must be 0 (none) or 1-5 and its QM >= 0 "
+                             f"(got {self.wall_hourglass_ihq}, {self.wall_hourglass_qh:g})")
         if self.structure == "hollow":
             if self.thickness <= 0.0 or self.elements_per_edge < 1:
                 raise ValueError("wall thickness must be positive and elements per edge >= 1")
@@ -292,7 +302,14 @@ def hollow_material(cfg: BlockConfig) -> tuple[float, float, float]:
 def _add_hollow_block(deck, cfg: BlockConfig):
     """Shell walls on a cubic cell grid with MAT_003 and self-contact."""
     from hollowbody.hollow.grid import hollow_box
-    from hollowbody.io.keyword import Contact, MatPlasticKinematic, Part, SectionShell, SetPartList
+    from hollowbody.io.keyword import (
+        Contact,
+        Hourglass,
+        MatPlasticKinematic,
+        Part,
+        SectionShell,
+        SetPartList,
+    )
 
     t = tissue(cfg.tissue)
     g = hollow_box(BLOCK_SIZE, cell=cfg.cell, thickness=cfg.thickness,
@@ -311,8 +328,10 @@ def _add_hollow_block(deck, cfg: BlockConfig):
         q = g.quads[sel]
         deck.add_shells(np.arange(eid, eid + q.shape[0]), pid, ids[q], thickness=cfg.thickness)
         eid += q.shape[0]
-        deck.add(Part(pid=pid, secid=1, mid=1, title=f"hollow {cfg.tissue} walls normal "
-                      f"{'xyz'[axis]}"))
+        deck.add(Part(pid=pid, secid=1, mid=1, hgid=WALL_HGID if cfg.wall_hourglass_ihq else 0,
+                      title=f"hollow {cfg.tissue} walls normal {'xyz'[axis]}"))
+    if cfg.wall_hourglass_ihq:
+        deck.add(Hourglass(hgid=WALL_HGID, ihq=cfg.wall_hourglass_ihq, qm=cfg.wall_hourglass_qh))
     deck.add(SectionShell(secid=1, elform=2, nip=5, t1=cfg.thickness))
     deck.add(MatPlasticKinematic(mid=1, ro=rho, e=e / 1000.0, pr=0.3, sigy=y / 1000.0,
                                  etan=etan / 1000.0, beta=1.0))

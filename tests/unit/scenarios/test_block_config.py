@@ -72,3 +72,18 @@ def test_solid_block_fixes_its_bottom_face_only():
     for spc in model.spcs:
         fixed[spc.nodes[spc.dofs.all(axis=1)]] = True
     assert np.array_equal(fixed & (z < 91.0), np.abs(z) < 1e-9)
+
+
+def test_wall_hourglass_option_sets_the_walls_hourglass():
+    """--wall-hourglass 4: the three wall parts get *HOURGLASS IHQ 4 QM 0.1; by default the
+    walls carry none (LS-DYNA's default viscous form); bad values are refused."""
+    from hollowbody.scenarios.block import PID_WALLS
+
+    plain_model = build_model(build_block_deck(BlockConfig(structure="hollow")))
+    assert all(plain_model.parts[p].hgid == 0 for p in PID_WALLS)
+    model = build_model(build_block_deck(BlockConfig(structure="hollow", wall_hourglass_ihq=4)))
+    for p in PID_WALLS:
+        hg = model.hourglass_of(p)
+        assert hg.ihq == 4 and hg.qm == pytest.approx(0.1)
+    with pytest.raises(ValueError, match="wall hourglass"):
+        BlockConfig(structure="hollow", wall_hourglass_ihq=7)
