@@ -45,6 +45,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     mat.add_argument("--calibration", type=Path, default=None,
                      help="calibration.json (best E and yield in MPa; its etan and thickness "
                      "too when present; default: none)")
+    p.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
+                   help="hourglass control of the walls: 0 none (the deck's default), 4 "
+                        "stiffness form, as the block test's --wall-hourglass (default 0)")
+    p.add_argument("--wall-hourglass-qm", type=float, default=0.1,
+                   help="QM of --wall-hourglass (default 0.1)")
     p.add_argument("--etan", type=float, default=0.0,
                    help="wall tangent modulus in MPa (default: the calibration's, else 0)")
     p.add_argument("--grid-axes", choices=("global", "principal"), default="global",
@@ -100,6 +105,8 @@ def run(args: argparse.Namespace) -> int:
                             thickness_from_calibration=args.thickness is None,
                             elements_per_edge=args.elements_per_edge, material=args.material,
                             calibration=args.calibration, etan=args.etan,
+                            wall_hourglass_ihq=args.wall_hourglass,
+                            wall_hourglass_qm=args.wall_hourglass_qm,
                             grid_axes=args.grid_axes, mass_mode=args.mass_mode,
                             self_contact=args.self_contact)
     selection = Selection(parts=args.parts, part_set=args.part_set,

@@ -49,6 +49,7 @@ from hollowbody.hollow.spatial import TriangleSurface
 from hollowbody.io.keyword import (
     Contact,
     Deck,
+    Hourglass,
     MassElements,
     Material,
     MatPlasticKinematic,
@@ -110,6 +111,10 @@ class HollowOptions:
     mass_mode: str = "density"
     self_contact: bool = True
     friction: float = 0.2
+    #: walls' *HOURGLASS IHQ (0: none, the deck's default) and QM, as the block
+    #: test's ``--wall-hourglass`` (docs/block.md)
+    wall_hourglass_ihq: int = 0
+    wall_hourglass_qm: float = 0.1
     snap: float = 0.25
     merge: float = 0.05
     coverage: bool = True
@@ -123,6 +128,10 @@ class HollowOptions:
         if int(self.elements_per_edge) < 1:
             raise UserInputError("--elements-per-edge must be at least 1 "
                                  f"(got {self.elements_per_edge})")
+        if self.wall_hourglass_ihq not in (0, 1, 2, 3, 4, 5) or self.wall_hourglass_qm < 0.0:
+            raise UserInputError("--wall-hourglass must be 0 (none) or 1-5 and its QM >= 0 "
+                                 f"(got {self.wall_hourglass_ihq}, "
+                                 f"{self.wall_hourglass_qm:g})")
         if self.grid_axes not in ("global", "principal"):
             raise UserInputError(f"--grid-axes must be 'global' or 'principal' "
                                  f"(got {self.grid_axes!r})")
@@ -428,7 +437,13 @@ def _convert_part(model: Model, group, options: HollowOptions, ids: de.IdAllocat
     if not part_report.ok:
         report.warnings.append(f"part {pid}: mass / centre / inertia not within tolerance "
                                f"({plan.note})")
-    update = {"secid": secid, "mid": mid, "hgid": 0, "eosid": 0,
+    hgid = 0
+    if options.wall_hourglass_ihq:
+        hgid = ids.take("hourglass")
+        items.append(Hourglass(hgid=hgid, ihq=options.wall_hourglass_ihq,
+                               qm=options.wall_hourglass_qm))
+        id_info["hourglass"] = hgid
+    update = {"secid": secid, "mid": mid, "hgid": hgid, "eosid": 0,
               "title": (title + " (hollow)")[:80] if title else "hollow"}
     return _PartResult(pid=pid, part_node_ids=model.node_ids[part_nodes],
                        boundary_node_ids=model.node_ids[np.unique(faces)], new_items=items,

@@ -18,6 +18,7 @@ from hollowbody.io.keyword import (
     DatabaseHistoryNode,
     Deck,
     ElementDiscrete,
+    Hourglass,
     Include,
     InitialVelocityNode,
     KeywordItem,
@@ -104,8 +105,8 @@ def _raw_ids(deck: Deck, prefixes: tuple[str, ...], every_line: bool) -> list[in
 
 class IdAllocator:
     """Free id ranges above a deck's maxima, per kind (node, element, section, material,
-    node_set, segment_set, part_set, contact). The first id of a kind is the next multiple of
-    1000 above the maximum, plus one."""
+    node_set, segment_set, part_set, contact, hourglass). The first id of a kind is the
+    next multiple of 1000 above the maximum, plus one."""
 
     def __init__(self, deck: Deck) -> None:
         items = list(deck.iter_items())
@@ -137,6 +138,7 @@ class IdAllocator:
             + _raw_ids(deck, ("SET_PART",), False),
             "contact": ids(Contact, "cid") + ids(TiedContact, "cid")
             + _raw_ids(deck, ("CONTACT_",), False),
+            "hourglass": ids(Hourglass, "hgid") + _raw_ids(deck, ("HOURGLASS",), False),
         }
         self.next = {k: (max(v, default=0) // 1000 + 1) * 1000 + 1 for k, v in self.next.items()}
         n_contacts = sum(1 for it in items if isinstance(it, (Contact, TiedContact)))

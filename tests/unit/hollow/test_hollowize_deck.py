@@ -170,3 +170,27 @@ def test_include_path_folders_follow_the_new_location(tmp_path):
     text = (tmp_path / "out" / "n.k").read_text()
     assert "*INCLUDE_PATH\n../in/lib\n" in text and "\n../in/lib/other.k\n" in text
     assert build_model(_read(tmp_path / "out" / "n.k")).shell_groups
+
+
+def test_wall_hourglass_option_gives_the_walls_their_own_control(tmp_path):
+    """--wall-hourglass 4: the converted parts point to a new *HOURGLASS (IHQ 4, QM 0.1,
+    an id above the deck's), written and read back; by default they carry none (HGID 0).
+    A bad IHQ is refused with the option's name."""
+    from hollowbody.errors import UserInputError
+
+    main = write_multipart_deck(tmp_path / "in")
+    deck = _read(main)
+    new, report = hollowize(deck, Selection(parts=[1, 2]),
+                            HollowOptions(cell=20.0, wall_hourglass_ihq=4))
+    write_converted(new, tmp_path / "out" / "hg.k", report.changed_decks)
+    m = build_model(_read(tmp_path / "out" / "hg.k"))
+    hgids = {m.parts[p].hgid for p in (1, 2)}
+    assert all(h > 1000 for h in hgids) and len(hgids) == 2
+    for p in (1, 2):
+        hg = m.hourglass_of(p)
+        assert hg.ihq == 4 and hg.qm == pytest.approx(0.1)
+    plain, plain_report = hollowize(deck, Selection(parts=[1]), HollowOptions(cell=20.0))
+    write_converted(plain, tmp_path / "out" / "plain.k", plain_report.changed_decks)
+    assert build_model(_read(tmp_path / "out" / "plain.k")).parts[1].hgid == 0
+    with pytest.raises(UserInputError, match="--wall-hourglass"):
+        HollowOptions(wall_hourglass_ihq=9).validate()
