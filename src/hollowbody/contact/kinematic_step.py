@@ -167,10 +167,10 @@ def work_arrays(n_rows: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def passes_step(passes: Sequence, xl: np.ndarray, vl: np.ndarray, dt_next: float,
-                threaded: Callable[[object], bool]) -> tuple[float, int]:
-    """dt_kin (ms) over the passes of a contact and the local row (of xl) of the node
-    that set it (-1: none); (inf, -1) at once when the bound
-    ``KIN_FRACTION B_min / (2 v_max)`` is at least ``dt_next`` (no pair can limit it).
+                threaded: Callable[[object], bool]) -> float:
+    """dt_kin (ms) over the passes of a contact; inf when no pair closes, and at once
+    when the bound ``KIN_FRACTION B_min / (2 v_max)`` is at least ``dt_next`` (no pair
+    can limit it).
 
     passes: the contact's passes with segments (``_Pass``: act, nodes, n_thick, seg,
     s_thick, s_depth, s_two, cen, nrm, rad2, nptr, ncand, kin_band, work arrays),
@@ -178,19 +178,18 @@ def passes_step(passes: Sequence, xl: np.ndarray, vl: np.ndarray, dt_next: float
     and half-step velocities; threaded(p): use the threaded kernel for pass p.
     """
     if not passes:
-        return math.inf, -1
+        return math.inf
     for p in passes:
         if p.kin_band is None:
             p.kin_band = narrowest_band(p.n_thick, p.s_thick, p.s_depth, p.s_two)
     band = min(p.kin_band for p in passes)
     vmax = 2.0 * math.sqrt(max_speed2(vl))
     if not math.isfinite(band) or KIN_FRACTION * band >= vmax * dt_next:
-        return math.inf, -1
-    best, node = math.inf, -1
+        return math.inf
+    best = math.inf
     for p in passes:
-        d, row = (approach_step if threaded(p) else approach_step_serial)(
+        d, _ = (approach_step if threaded(p) else approach_step_serial)(
             p.act, xl, vl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two, p.cen,
             p.nrm, p.rad2, p.nptr, p.ncand, KIN_FRACTION, p._kin_dt, p._kin_row)
-        if d < best:
-            best, node = float(d), int(p.nodes[row])
-    return best, node
+        best = min(best, float(d))
+    return best

@@ -226,7 +226,7 @@ class ContactRuntime:
         "n_pass_through", "pass_through_nodes", "events", "_pending",
         "_xsort", "_xnear", "_margin", "_near_margin", "_xprev", "_fprev",
         "n_sorts", "_last_sort", "n_filters", "_refilter", "_first", "_dtc",
-        "dt_kin", "dt_kin_node", "n_step_limited", "dt_kin_min")
+        "n_step_limited", "dt_kin_min")
 
     def __init__(self, cdef: ContactDef, model: Model, node_mass: np.ndarray,
                  rigid_node: np.ndarray, fixed_node: np.ndarray | None = None,
@@ -378,12 +378,8 @@ class ContactRuntime:
         self.master_force = np.zeros(3)
         self.energy = 0.0
         self.n_active = 0
-        #: ms: this cycle's kinematic step limit (inf: no pair closes;
-        #: :mod:`hollowbody.contact.kinematic_step`) and the model node index that set
-        #: it (-1: none); the solver counts the cycles it set the step in
-        #: ``n_step_limited`` and keeps the smallest in ``dt_kin_min``
-        self.dt_kin = np.inf
-        self.dt_kin_node = -1
+        #: the solver counts the cycles in which this contact's kinematic step limit
+        #: (:meth:`kinematic_step`) set the step and keeps the smallest (ms)
         self.n_step_limited = 0
         self.dt_kin_min = np.inf
         self._kin_live: list[_Pass] = []
@@ -594,14 +590,10 @@ class ContactRuntime:
 
     def kinematic_step(self, dt_next: float) -> float:
         """This cycle's kinematic step limit (ms) over the passes, after
-        :meth:`add_forces` (sets ``dt_kin``, ``dt_kin_node``: the model node index;
-        :func:`hollowbody.contact.kinematic_step.passes_step`). ``dt_next``: the step
-        the solver would take (the pairs are visited only if the limit can be below
-        it; inf otherwise)."""
-        self.dt_kin, row = passes_step(self._kin_live, self._xl, self._vl, dt_next,
-                                       self._threaded)
-        self.dt_kin_node = int(self.nodes[row]) if row >= 0 else -1
-        return self.dt_kin
+        :meth:`add_forces` (:func:`hollowbody.contact.kinematic_step.passes_step`).
+        ``dt_next``: the step the solver would take (the pairs are visited only if the
+        limit can be below it; inf otherwise)."""
+        return passes_step(self._kin_live, self._xl, self._vl, dt_next, self._threaded)
 
 
 def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray

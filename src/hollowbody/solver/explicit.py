@@ -205,14 +205,20 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     return RunResult(status, reason, state.t, state.cycle, summary, out)
 
 
+def _step_setter(state: State) -> str:
+    """What set ``state.dt_next``: a contact's kinematic limit or an element."""
+    if state.dt_contact:
+        return f"contact {state.dt_contact} (a node closing on it fast: its kinematic limit)"
+    elem, pid = state.dt_crit_elem
+    return f"element {elem} (part {pid})"
+
+
 def _start(model, plan, state: State, outputs: RunOutputs) -> None:  # noqa: ANN001
     start(model, plan, state)
     state.monitors = Monitors(dt_initial=state.dt0)
     state.e0 = kinetic_energy(plan, state)
-    by = (f"contact {state.dt_contact}, a node closing on it" if state.dt_contact else
-          f"element {state.dt_crit_elem[0]}, part {state.dt_crit_elem[1]}")
-    outputs.log(f"initial time step {state.dt0:.4e} ms ({by}); initial kinetic energy "
-                f"{state.e0:.6g} J")
+    outputs.log(f"initial time step {state.dt0:.4e} ms (set by {_step_setter(state)}); "
+                f"initial kinetic energy {state.e0:.6g} J")
     ms = state.mass_scaling
     if model.controls.dt2ms > 0.0:
         outputs.log("DT2MS > 0 (mass scaling of every element to one step) runs as "
@@ -257,10 +263,8 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
                               f"(element {elem}, part {pid})", element=elem, part=pid)
         if dtmin > 0.0 and not plan.erode and state.dt_next < dtmin * state.dt0:
             elem, pid = state.dt_crit_elem
-            by = (f"contact {state.dt_contact} (a node closing on it fast: its kinematic "
-                  "limit)" if state.dt_contact else f"element {elem} (part {pid})")
             raise Termination(ERROR, f"time step {state.dt_next:.4e} ms below DTMIN "
-                              f"({dtmin:g} x initial) set by {by} "
+                              f"({dtmin:g} x initial) set by {_step_setter(state)} "
                               f"at t={state.t:.6g} ms", element=elem, part=pid)
         outputs.record(state)
         progress.update(state.t, state.cycle, dt)

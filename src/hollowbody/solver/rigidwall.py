@@ -167,14 +167,15 @@ class RigidWallTerm:
                 self.k[b] = PENALTY_FRACTION * self.wall.rwksf * bd.mass / (nodes.size * dt * dt)
             v = state.v[nodes]
             f_new = np.zeros((nodes.size, 3))
+            ft = self.ft[b]
+            hit = np.zeros(nodes.size, dtype=bool)
             if on and not np.isnan(self.k[b]):
                 gap = (state.x[nodes] - self.tail) @ self.n
                 hit = gap < 0.0
-                ft = self.ft[b]
                 if hit.any():
                     f_new[hit], ft[hit] = self._penalty(bd, self.k[b], gap[hit], v[hit], dt,
                                                         ft[hit])
-                ft[~hit] = 0.0
+            ft[~hit] = 0.0  # off the wall (or the wall not active): the stick is forgotten
             if dt > 0.0:
                 self.contact_energy -= dt * 0.5 * float(((self.f_prev[b] + f_new) * v).sum())
             self.f_prev[b] = f_new

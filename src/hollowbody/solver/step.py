@@ -184,7 +184,7 @@ def _contact_limit(plan, state) -> int:  # noqa: ANN001
     if best is None:
         return 0
     best.n_step_limited += 1
-    best.dt_kin_min = min(best.dt_kin_min, best.dt_kin)
+    best.dt_kin_min = min(best.dt_kin_min, state.dt_next)
     return int(best.cid)
 
 
