@@ -129,6 +129,23 @@ def hollow_from_calibration(path: str | Path) -> dict[str, float]:
     """Best wall parameters of a ``calibration.json`` (calibrated, fixed and defaults)."""
     from hollowbody.calibrate.wall import effective_wall
 
+    data = _calibration_data(path)
+    wall = effective_wall(data)
+    if wall is None:
+        raise UserInputError(f"{path}: the calibration has no valid best candidate")
+    return wall
+
+
+def wall_control_of_calibration(path: str | Path) -> dict:
+    """The walls' hourglass control a ``calibration.json`` was run with (BlockConfig
+    fields; {} for the block's default)."""
+    from hollowbody.calibrate.wall import wall_control
+
+    return wall_control(_calibration_data(path))
+
+
+def _calibration_data(path: str | Path) -> dict:
+    """The content of a ``calibration.json`` (UserInputError naming the file if it is not one)."""
     p = Path(path)
     try:
         data = json.loads(p.read_text())
@@ -138,10 +155,7 @@ def hollow_from_calibration(path: str | Path) -> dict[str, float]:
         raise UserInputError(f"{p}: not a calibration.json file") from None
     if not isinstance(data, dict) or "best_parameters" not in data:
         raise UserInputError(f"{p}: not a calibration.json file (no best_parameters)")
-    wall = effective_wall(data)
-    if wall is None:
-        raise UserInputError(f"{p}: the calibration has no valid best candidate")
-    return wall
+    return data
 
 
 def run_study(simulator: Any, speeds: Sequence[float], out_dir: str | Path,

@@ -21,3 +21,14 @@ def effective_wall(data: dict) -> dict[str, float] | None:
     fixed = data.get("simulator", {}).get("fixed", {}) or {}
     values = {**WALL_DEFAULTS, **fixed, **best}
     return {k: float(values[k]) for k in WALL_UNITS if k in values}
+
+
+#: BlockConfig fields of the walls' hourglass control that a calibration records in its
+#: simulator options (a study of calibrated walls must run them with the same control).
+WALL_CONTROL_FIELDS = ("wall_hourglass_ihq", "wall_hourglass_qh")
+
+
+def wall_control(data: dict) -> dict:
+    """The walls' hourglass control a calibration ran with ({} for the block's default)."""
+    options = data.get("simulator", {}).get("options", {}) or {}
+    return {k: options[k] for k in WALL_CONTROL_FIELDS if k in options}

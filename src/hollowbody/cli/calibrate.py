@@ -73,6 +73,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--cfc", type=float, default=180.0,
                    help="SAE J211 filter class of the contact force in the fitness "
                         "(default 180; 0: no filter)")
+    add_wall_hourglass_options(p)
     p.add_argument("--quiet", action="store_true",
                    help="no progress display (default: progress shown)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
@@ -88,6 +89,33 @@ def add_ga_options(p: argparse.ArgumentParser, population: int = 16,
     p.add_argument("--generations", type=int, default=generations,
                    help=f"GA generations including the initial one (default {generations})")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+
+
+def add_wall_hourglass_options(p: argparse.ArgumentParser, default: int | None = 0) -> None:
+    """``--wall-hourglass IHQ`` and ``--wall-hourglass-qm QM`` (the hollow walls' control)."""
+    p.add_argument("--wall-hourglass", type=int, default=default, metavar="IHQ",
+                   help="hourglass control of the hollow walls: 0 none (LS-DYNA's default, "
+                        "viscous IHQ 1 QH 0.1), 1-5 that *HOURGLASS IHQ, e.g. 4 the "
+                        "stiffness form (default "
+                        + ("0" if default == 0 else "the calibration's, else 0") + ")")
+    p.add_argument("--wall-hourglass-qm", type=float, default=None, metavar="QM",
+                   help="QM of --wall-hourglass (default 0.1)")
+
+
+def wall_hourglass_options(args: argparse.Namespace) -> dict:
+    """BlockConfig fields of --wall-hourglass / --wall-hourglass-qm ({} when neither is
+    given or IHQ is 0); UserInputError for an IHQ outside 0-5 or a negative QM."""
+    ihq = args.wall_hourglass
+    qm = args.wall_hourglass_qm
+    if ihq is not None and ihq not in (0, 1, 2, 3, 4, 5):
+        raise UserInputError(f"--wall-hourglass must be 0-5 (got {ihq})")
+    if qm is not None and qm < 0.0:
+        raise UserInputError(f"--wall-hourglass-qm must be >= 0 (got {qm:g})")
+    if qm is not None and not ihq:
+        raise UserInputError("--wall-hourglass-qm needs --wall-hourglass 1-5")
+    if not ihq:
+        return {}
+    return {"wall_hourglass_ihq": int(ihq), "wall_hourglass_qh": 0.1 if qm is None else qm}
 
 
 def add_runner_options(p: argparse.ArgumentParser) -> None:
@@ -186,7 +214,7 @@ def build_settings(args: argparse.Namespace):
     # the engine is looked for here unless the evaluations run on a cluster's nodes
     engine = external_engine(args, find=getattr(args, "cluster", None) is None)
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed,
-                              engine=engine)
+                              options=wall_hourglass_options(args), engine=engine)
     try:  # the block's own checks (mesh divides the block, ...)
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], space.rounded(space.lower))

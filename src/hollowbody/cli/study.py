@@ -1,8 +1,10 @@
 """``hollowbody study``: efficiency and stability of the solid vs the hollow block.
 
 Runs the solid and the hollow block test at each speed (hollow walls from a
-calibration's best candidate with --hollow-from, else the paper's fit: muscle
-E 100 MPa / yield 4 MPa, fat 50 / 2 MPa, 1.5 mm walls) and writes into DIR:
+calibration's best candidate with --hollow-from, run with the hourglass
+control they were calibrated with unless --wall-hourglass says otherwise; else
+the paper's fit: muscle E 100 MPa / yield 4 MPa, fat 50 / 2 MPa, 1.5 mm walls)
+and writes into DIR:
 study.md and study.csv (status and reason, end time, cycles, wall time,
 element counts, peak force, maximum displacement; solid/hollow wall-time
 ratio where both end normally), fd_<speed>kmh.png (solid vs hollow),
@@ -24,8 +26,10 @@ here), 2 bad input, 130 interrupted.
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
+from hollowbody.cli.calibrate import add_wall_hourglass_options, wall_hourglass_options
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
@@ -54,9 +58,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="simulated time in ms (default: the block's)")
     p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=False,
                    help="write ParaView states of every run (default: no)")
-    p.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
-                   help="hourglass control of the hollow walls: 0 none (LS-DYNA's default, "
-                        "viscous IHQ 1 QH 0.1), 4 stiffness form QM 0.1 (default 0)")
+    add_wall_hourglass_options(p, default=None)
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=int, default=1,
                    help="runs at a time (default 1: serial, comparable wall times)")
@@ -74,7 +76,11 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.calibrate.runner import make_runner
     from hollowbody.calibrate.simulate import BlockSimulator
     from hollowbody.calibrate.space import parse_speeds
-    from hollowbody.calibrate.study import hollow_from_calibration, run_study
+    from hollowbody.calibrate.study import (
+        hollow_from_calibration,
+        run_study,
+        wall_control_of_calibration,
+    )
     from hollowbody.report.study import wall_time_ratios, write_study_report
     from hollowbody.solver.outputs import prepare_runs_dir
 
@@ -84,7 +90,15 @@ def main(args: argparse.Namespace) -> int:
     if args.end_time is not None and not args.end_time > 0.0:
         raise UserInputError(f"--end-time must be positive (got {args.end_time:g} ms)")
     wall = hollow_from_calibration(args.hollow_from) if args.hollow_from else None
-    options = {"wall_hourglass_ihq": args.wall_hourglass} if args.wall_hourglass else {}
+    options = wall_hourglass_options(args)
+    if args.hollow_from:
+        calibrated = wall_control_of_calibration(args.hollow_from)
+        if args.wall_hourglass is None and args.wall_hourglass_qm is None:
+            options = calibrated  # the walls run with the control they were calibrated with
+        elif options != calibrated:
+            print(f"note: the walls of {args.hollow_from} were calibrated with "
+                  f"{_control_text(calibrated)}; this study runs them with "
+                  f"{_control_text(options)}", file=sys.stderr)
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time,
                               vtk=args.vtk, options=options)
     try:
@@ -106,3 +120,11 @@ def main(args: argparse.Namespace) -> int:
         print(f"wall-time ratio solid/hollow at {v:g} km/h: {q:.2f}")
     print(f"table: {files['table_md']}; plots: {args.out / 'fd_all.png'}")
     return 0
+
+
+def _control_text(options: dict) -> str:
+    """'*HOURGLASS IHQ 4 QM 0.1' or 'no wall *HOURGLASS' for a wall-control dict."""
+    if not options:
+        return "no wall *HOURGLASS (viscous IHQ 1, QH 0.1)"
+    return (f"*HOURGLASS IHQ {options['wall_hourglass_ihq']} "
+            f"QM {options.get('wall_hourglass_qh', 0.1):g}")

@@ -40,6 +40,9 @@ def _one_line_error(capsys) -> str:
     (["--mesh", "7"], "does not divide"),
     (["--end-time", "-1"], "--end-time"),
     (["--resume"], "no checkpoint"),
+    (["--wall-hourglass", "7"], "--wall-hourglass must be 0-5"),
+    (["--wall-hourglass", "4", "--wall-hourglass-qm", "-0.1"], "--wall-hourglass-qm"),
+    (["--wall-hourglass-qm", "0.2"], "needs --wall-hourglass"),
 ])
 def test_calibrate_bad_inputs(tmp_path, capsys, args, words):
     code = cli_main.main(["calibrate", "--tissue", "muscle", "--out", str(tmp_path / "c"),
@@ -66,6 +69,7 @@ def test_calibrate_resume_with_other_settings(tmp_path, capsys):
     (["--hollow-from", "missing.json"], "no such calibration file"),
     (["--workers", "0"], "--workers"),
     (["--mesh", "7"], "does not divide"),
+    (["--wall-hourglass", "6"], "--wall-hourglass must be 0-5"),
 ])
 def test_study_bad_inputs(tmp_path, capsys, monkeypatch, args, words):
     monkeypatch.chdir(tmp_path)
@@ -96,3 +100,71 @@ def test_help_lists_the_options(capsys):
     for opt in ("--speeds", "--params", "--bounds", "--population", "--generations", "--seed",
                 "--workers", "--scheduler", "--resume", "--mesh", "--end-time", "--out"):
         assert opt in out
+
+
+def _parsed(argv):
+    import argparse
+
+    from hollowbody.cli import calibrate as cli_calibrate
+
+    parser = argparse.ArgumentParser()
+    cli_calibrate.register(parser.add_subparsers())
+    return parser.parse_args(["calibrate", "--tissue", "muscle", "--out", "c", *argv])
+
+
+def test_calibrate_wall_hourglass_goes_into_the_runs_and_the_cache_key():
+    """--wall-hourglass 4: every hollow run's walls get IHQ 4 QM 0.1 (QM as given), and the
+    simulator's description (the cache key, calibration.json) records it; default: none."""
+    from hollowbody.cli.calibrate import build_settings
+
+    _, plain = build_settings(_parsed([]))
+    _, hg4 = build_settings(_parsed(["--wall-hourglass", "4"]))
+    _, hg4q = build_settings(_parsed(["--wall-hourglass", "4", "--wall-hourglass-qm", "0.05"]))
+    assert plain.config("hollow", 40.0, {"E": 100.0, "yield": 4.0}).wall_hourglass_ihq == 0
+    cfg = hg4.config("hollow", 40.0, {"E": 100.0, "yield": 4.0})
+    assert (cfg.wall_hourglass_ihq, cfg.wall_hourglass_qh) == (4, 0.1)
+    assert hg4q.config("hollow", 40.0, {"E": 100.0, "yield": 4.0}).wall_hourglass_qh == 0.05
+    assert hg4.describe()["options"] == {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1}
+    assert plain.describe()["options"] == {}
+    assert hg4.describe() != plain.describe() != hg4q.describe()
+
+
+def _calibration_file(tmp_path, options):
+    p = tmp_path / "calibration.json"
+    p.write_text(json.dumps({"best_parameters": {"E": 120.0, "yield": 9.0},
+                             "simulator": {"fixed": {}, "options": options}}))
+    return p
+
+
+@pytest.mark.parametrize("extra, expected, note", [
+    ([], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1}, False),
+    (["--wall-hourglass", "4"], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1}, False),
+    (["--wall-hourglass", "0"], {}, True),
+])
+def test_study_runs_calibrated_walls_with_their_hourglass_control(tmp_path, capsys,
+                                                                   monkeypatch, extra,
+                                                                   expected, note):
+    """Walls calibrated with IHQ 4 run with IHQ 4 in the study unless --wall-hourglass says
+    otherwise, and then the study says that they were calibrated with another control."""
+    import hollowbody.calibrate.study as cal_study
+
+    seen = {}
+
+    def fake_run_study(sim, speeds, out, hollow_params=None, runner=None):
+        seen["options"] = dict(sim.options)
+        seen["wall"] = hollow_params
+        return []
+
+    monkeypatch.setattr(cal_study, "run_study", fake_run_study)
+    import hollowbody.report.study as report_study
+
+    monkeypatch.setattr(report_study, "write_study_report",
+                        lambda rows, out: {"table_md": out / "study.md"})
+    cal = _calibration_file(tmp_path, {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1})
+    code = cli_main.main(["study", "--tissue", "muscle", "--out", str(tmp_path / "s"),
+                          "--hollow-from", str(cal), "--workers", "1", *extra])
+    assert code == 0
+    assert seen["options"] == expected
+    assert seen["wall"]["E"] == 120.0 and seen["wall"]["yield"] == 9.0
+    err = capsys.readouterr().err
+    assert ("were calibrated with *HOURGLASS IHQ 4 QM 0.1" in err) is note
