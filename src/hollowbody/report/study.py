@@ -37,12 +37,13 @@ from hollowbody.scenarios.block import THROUGH_BASE
 COLUMNS = ("structure", "speed_kmh", "status", "quality", "reason", "end_time_ms", "cycles",
            "wall_seconds", "hexahedra", "shells", "eroded_elements", "peak_force_kN",
            "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
-           "pass_through_nodes", "outcome")
+           "pass_through_nodes", "outcome", "fitness_vs_solid")
 HEADERS = ("structure", "speed [km/h]", "status", "quality****", "reason", "end time [ms]",
            "cycles",
            "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (filtered)",
            "peak force raw [kN]", "max displacement [mm]", "energy ratio",
-           "hourglass [% of total]", "pass-through nodes", "impactor***")
+           "hourglass [% of total]", "pass-through nodes", "impactor***",
+           "fitness vs solid*****")
 
 
 def _cell(v: object) -> str:
@@ -117,7 +118,12 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
               "", "\\*\\*\\*\\* the run's verdict (energy balance, hourglass and negative "
               "contact energy, time-step collapse, added mass, pass-through; see the solver "
               "documentation): ok, warning, or **SUSPECT** (its curve is not trusted and the "
-              "run is left out of the wall-time ratio), with the reasons."]
+              "run is left out of the wall-time ratio), with the reasons.",
+              "", "\\*\\*\\*\\*\\* hollow runs: the calibration's fitness of the hollow "
+              "force-displacement curve against the solid one at the same speed (both "
+              f"{filt}): the root-mean-square force difference over the loading and the "
+              "unloading branch, in units of the solid peak force, over the solid's "
+              "displacement range (0: the same curve; 0.1: 10 % of the peak on average)."]
     return "\n".join(lines) + "\n"
 
 
@@ -203,14 +209,36 @@ def plot_all(curves: dict, path: str | Path, cfc: float | None = 180.0,
     plt.close(fig)
 
 
+def add_fitness_vs_solid(rows: list[dict], curves: dict, cfc: float | None = 180.0) -> None:
+    """Set ``fitness_vs_solid`` of each hollow row whose speed has a solid curve (the
+    calibration's :func:`~hollowbody.calibrate.fitness.curve_distance`, same filter);
+    None where either curve is missing or either run did not end normally."""
+    from hollowbody.calibrate.fitness import FitnessSettings, curve_distance
+
+    status = {(r["structure"], r["speed_kmh"]): r.get("status") for r in rows}
+    for r in rows:
+        r["fitness_vs_solid"] = None
+        v = r["speed_kmh"]
+        ref, cand = curves.get(("solid", v)), curves.get(("hollow", v))
+        if (r["structure"] != "hollow" or ref is None or cand is None
+                or status.get(("solid", v)) != "normal termination"
+                or r.get("status") != "normal termination"):
+            continue
+        try:
+            r["fitness_vs_solid"] = curve_distance(ref, cand, FitnessSettings(cfc=cfc))
+        except ValueError:  # a solid curve without positive force or displacement
+            pass
+
+
 def write_study_report(rows: list[dict], out_dir: str | Path,
                        cfc: float | None = 180.0) -> dict[str, Path]:
     """Write study.md, study.csv and the plots into ``out_dir``; returns {name: path}."""
     out = Path(out_dir)
     files = {"table_md": out / "study.md", "table_csv": out / "study.csv"}
+    curves = load_curves(rows)
+    add_fitness_vs_solid(rows, curves, cfc)
     files["table_md"].write_text(study_markdown(rows, cfc=cfc))
     write_study_csv(rows, files["table_csv"])
-    curves = load_curves(rows)
     for v in sorted({r["speed_kmh"] for r in rows}):
         p = out / f"fd_{v:g}kmh.png"
         plot_speed(rows, curves, v, p, cfc)

@@ -56,3 +56,27 @@ def test_demo_folder_is_complete(tmp_path):
         assert link in md and link in html
     assert "<table>" in html and "Young's modulus" in html
     assert len(res.study_rows) == 6
+
+
+def test_study_rates_each_hollow_curve_against_the_solid_one(tmp_path):
+    """fitness_vs_solid: 0 for walls that reproduce the solid curve (the surrogate's
+    reference parameters), the calibration's own fitness for other walls (the same
+    curve_distance with the study's filter), None for solid rows and where the solid
+    run died; in the table and the CSV."""
+    from hollowbody.calibrate.fitness import FitnessSettings, curve_distance
+    from hollowbody.calibrate.study import load_curves
+
+    sim = DiesFast()
+    exact = run_study(sim, (40.0,), tmp_path / "exact", hollow_params=dict(sim.reference))
+    write_study_report(exact, tmp_path / "exact")
+    assert exact[1]["fitness_vs_solid"] < 1e-9
+    assert exact[0]["fitness_vs_solid"] is None
+    rows = run_study(sim, (40.0, 100.0), tmp_path / "off", hollow_params={"E": 150.0})
+    files = write_study_report(rows, tmp_path / "off")
+    curves = load_curves(rows)
+    expected = curve_distance(curves[("solid", 40.0)], curves[("hollow", 40.0)],
+                              FitnessSettings(cfc=180.0))
+    assert rows[1]["fitness_vs_solid"] == expected > 0.01
+    assert rows[3]["fitness_vs_solid"] is None  # the solid run at 100 km/h died
+    assert "fitness vs solid" in files["table_md"].read_text()
+    assert files["table_csv"].read_text().splitlines()[0].split(",")[-2] == "fitness_vs_solid"
