@@ -74,6 +74,25 @@ def segment_boxes(x: np.ndarray, seg: np.ndarray, grow: np.ndarray, lo: np.ndarr
 
 
 @njit(cache=True)
+def _extent(lo, hi, origin, top, ext):
+    """Grid extent of the boxes lo / hi (S, 3) mm in one pass: origin, top (3,) the
+    smallest lo and the largest hi per axis, ext (S,) each box's largest side (numpy's
+    axis-0 reductions of these narrow arrays cost ~0.2 ms each for 6,000 boxes)."""
+    for k in range(3):
+        origin[k] = np.inf
+        top[k] = -np.inf
+    for s in range(lo.shape[0]):
+        e = -np.inf
+        for k in range(3):
+            a = lo[s, k]
+            b = hi[s, k]
+            origin[k] = min(origin[k], a)
+            top[k] = max(top[k], b)
+            e = max(e, b - a)
+        ext[s] = e
+
+
+@njit(cache=True)
 def _cell(v, origin, h):
     return np.int64(np.floor((v - origin) / h))
 
@@ -240,17 +259,19 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     lo = np.empty((seg.shape[0], 3))
     hi = np.empty((seg.shape[0], 3))
     segment_boxes(x, seg, grow, lo, hi, parallel and seg.shape[0] >= 4 * PARALLEL_MIN_NODES)
-    origin = lo.min(axis=0)
-    ext = (hi - lo).max(axis=1)
+    origin = np.empty(3)
+    top = np.empty(3)
+    ext = np.empty(seg.shape[0])
+    _extent(lo, hi, origin, top, ext)
     h = float(np.median(ext))
-    span = float((hi.max(axis=0) - origin).max())
+    span = float((top - origin).max())
     h = max(h, span / 2.0e5, 1.0e-9)
     while True:
         cnt = _count_pairs(lo, hi, origin, h)
         if cnt.sum() <= _MAX_PAIRS_PER_SEGMENT * seg.shape[0] + 64:
             break
         h *= 2.0
-    dims = (np.floor((hi.max(axis=0) - origin) / h).astype(np.int64) + 1)
+    dims = (np.floor((top - origin) / h).astype(np.int64) + 1)
     total = int(cnt.sum())
     keys = np.empty(total, np.int64)
     segs = np.empty(total, np.int32)
