@@ -9,7 +9,10 @@ the full narrow phase, friction and force scatter. The bucket sort runs every
 wall time, the median (with the sort's share added; robust on a busy machine)
 and the process CPU time. Then the contact's kinematic step limit forced to visit
 every near pair (``kinematic_step(inf)``; in a run it visits them only when it can
-bind), median per slave node per cycle.
+bind), median per slave node per cycle. Last, the bucket sort alone (the contact's
+re-sort: segment boxes, grid, candidate lists, distance cut), median of 20, one
+thread: at large steps (a fast impactor, few cycles per segment) the contact re-sorts
+every few cycles and this is most of its cost.
 
 Run:  python benchmarks/bench_contact.py [--cycles 300] [--kind nodes_to_surface]
 """
@@ -98,6 +101,23 @@ def main() -> None:
               f"(median {med:.3f}; CPU {cpu:.3f} summed over threads; {n_slave} checked "
               f"nodes, {active} in contact; {us * n_slave / 1000:.2f} ms per cycle); "
               f"kinematic step limit, every near pair visited: median {kin:.3f}")
+    print(f"bucket sort (threads=1): median {sort_ms(args.kind):.3f} ms per re-sort")
+
+
+def sort_ms(kind: str, repeats: int = 20) -> float:
+    """Median wall ms of one re-sort of the contact (every pass), one thread."""
+    numba.set_num_threads(1)
+    model, rt = build(kind)
+    f = np.zeros((model.n_nodes, 3))
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    rt.add_forces(x, v, 1.0e-4, 0, f)  # the first call sorts (and compiles)
+    times = []
+    for k in range(repeats):
+        t0 = time.perf_counter()
+        rt._sort(1.0e-4, k + 1)
+        times.append(time.perf_counter() - t0)
+    return 1000.0 * float(np.median(times))
 
 
 if __name__ == "__main__":

@@ -35,6 +35,7 @@ allocated here, none per cycle (the bucket sort, every
 
 from __future__ import annotations
 
+import math
 from typing import ClassVar
 
 import numpy as np
@@ -55,7 +56,7 @@ from hollowbody.contact.frames import (
     segment_frames_of,
     segment_frames_of_parallel,
 )
-from hollowbody.contact.kinematic_step import passes_step, work_arrays
+from hollowbody.contact.kinematic_step import max_speed2, passes_step, work_arrays
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
 from hollowbody.contact.penalty import (
@@ -467,7 +468,7 @@ class ContactRuntime:
                 p.ex_ptr, p.ex_seg = merge_csr(p.ex_ptr, p.ex_seg, rp, rs)
 
     def _sort(self, dt: float, cycle: int) -> None:
-        vmax = float(np.sqrt((self._vl ** 2).sum(axis=1).max())) if self._vl.size else 0.0
+        vmax = math.sqrt(max_speed2(self._vl))
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
