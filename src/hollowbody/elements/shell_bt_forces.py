@@ -546,6 +546,15 @@ CHUNK = 64
 PARALLEL_MIN = 512
 
 
+#: Fast-math flags of the shell kernels: FASTMATH without reassociation and FMA
+#: contraction. With those two, the element loop compiled in the running process and
+#: the same kernel loaded from the disk cache did not compute the same round-off
+#: (element forces differing by up to 4e-15 kN after a few cycles), so a run's result
+#: depended on whether its process had compiled the kernel (the hollow block at
+#: 100 km/h: 769 or 754 cycles). Without them both are identical; cost about 5-10 %
+#: of the shell kernel's time (benchmarks/bench_shell.py).
+SHELL_FASTMATH = {"nsz", "arcp", "afn"}
+
 _KERNELS: dict[str, tuple[Callable[..., None], Callable[..., None]]] = {}
 
 
@@ -598,9 +607,10 @@ def make_shell_kernel(law: ModuleType) -> tuple[Callable[..., None], Callable[..
     if kernels is not None:
         return kernels
     stamp = source_stamp(law, sys.modules[__name__], shell_bt_kinematics)
-    loop = njit(error_model="numpy", fastmath=FASTMATH)(_with_globals(bt_shell_range, _law=law))
+    loop = njit(error_model="numpy", fastmath=SHELL_FASTMATH)(
+        _with_globals(bt_shell_range, _law=law))
     serial_py, parallel_py = _wrappers(stamp)
-    serial = njit(cache=True, error_model="numpy", fastmath=FASTMATH)(
+    serial = njit(cache=True, error_model="numpy", fastmath=SHELL_FASTMATH)(
         _with_globals(serial_py, _range=loop))
     parallel = njit(cache=True, parallel=True)(_with_globals(parallel_py, _range=loop))
     _KERNELS[key] = (serial, parallel)
