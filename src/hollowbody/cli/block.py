@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hollowbody.cli.calibrate import add_wall_hourglass_options
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.run_engine import add_external_engine_arguments, external_engine
 from hollowbody.cli.text import plain
@@ -78,11 +79,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--imperfection", type=float, default=None,
                    help="amplitude in mm of the walls' buckling-mode offsets (default 0.1 x "
                         "thickness; 0 gives flat walls)")
-    g.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
-                   help="hourglass control of the walls: 0 none (LS-DYNA's default, viscous "
-                        "IHQ 1 QH 0.1), 4 stiffness form (default 0)")
-    g.add_argument("--wall-hourglass-qm", type=float, default=0.1,
-                   help="QM of --wall-hourglass (default 0.1)")
+    add_wall_hourglass_options(g)
     g.add_argument("--mass-preserving", action=argparse.BooleanOptionalAction, default=True,
                    help="walls carry the solid block's mass; --no-mass-preserving keeps the "
                         "tissue density instead (default: mass preserving)")
@@ -118,7 +115,8 @@ def main(args: argparse.Namespace) -> int:
                           imperfection=args.imperfection,
                           mass_preserving=args.mass_preserving,
                           wall_hourglass_ihq=args.wall_hourglass,
-                          wall_hourglass_qh=args.wall_hourglass_qm,
+                          wall_hourglass_qh=(0.1 if args.wall_hourglass_qm is None
+                                             else args.wall_hourglass_qm),
                           mass_scaling=args.mass_scaling, dtmin=args.dtmin,
                           thickness_update=args.thickness_update)
     except ValueError as exc:
