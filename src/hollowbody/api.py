@@ -40,14 +40,18 @@ def _read_for_run(deck: str | Path, strict: bool) -> tuple[Model, tuple[Path, ..
 def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
               erode: bool | None = None, vtk: bool = True, quiet: bool = True,
               label: str = "run", restart: str | Path | None = None,
-              dump_cycles: int | None = None, overwrite: bool = False,
+              dump_cycles: int | None = None, dump_minutes: float = 0.0,
+              keep_dumps: int = 0, dump_at_end: bool = False, overwrite: bool = False,
               inputs: tuple[Path, ...] = (), quality: Thresholds | None = None,
               threads: int | str | None = None, d3plot: bool | None = None) -> RunResult:
     """Run a model; outputs go to ``out_dir`` (created).
 
     restart: resume from this restart file, or ``"newest"`` for the newest
     ``d3dumpNN`` of ``out_dir``; dump_cycles: cycles between restart files
-    (overrides *DATABASE_BINARY_D3DUMP). An ``out_dir`` holding an earlier run
+    (overrides *DATABASE_BINARY_D3DUMP); dump_minutes: minutes of wall time between
+    restart files too (0: not by time); keep_dumps: keep only the newest K restart
+    files (0: all); dump_at_end: a run that ends normally writes one too (to be
+    continued to a later end time). An ``out_dir`` holding an earlier run
     is refused (UserInputError) unless ``overwrite``, which deletes that run's
     outputs first (never the ``inputs`` files); a restart resumes into it.
     quality: limits of the run's verdict (``summary["quality"]``; None: the defaults).
@@ -58,15 +62,17 @@ def run_model(model: Model, out_dir: str | Path, end_time: float | None = None,
     """
     return run(model, RunOptions(out_dir=Path(out_dir), end_time=end_time, erode=erode,
                                  vtk=vtk, quiet=quiet, label=label, restart=restart,
-                                 dump_cycles=dump_cycles, overwrite=overwrite,
-                                 inputs=tuple(inputs), quality=quality, threads=threads,
-                                 d3plot=d3plot))
+                                 dump_cycles=dump_cycles, dump_minutes=dump_minutes,
+                                 keep_dumps=keep_dumps, dump_at_end=dump_at_end,
+                                 overwrite=overwrite, inputs=tuple(inputs), quality=quality,
+                                 threads=threads, d3plot=d3plot))
 
 
 def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = None,
              erode: bool | None = None, vtk: bool = True, quiet: bool = True,
              strict: bool = False, restart: str | Path | None = None,
-             dump_cycles: int | None = None, overwrite: bool = False,
+             dump_cycles: int | None = None, dump_minutes: float = 0.0,
+             keep_dumps: int = 0, dump_at_end: bool = False, overwrite: bool = False,
              quality: Thresholds | None = None,
              threads: int | str | None = None, d3plot: bool | None = None) -> RunResult:
     """Read ``deck`` and run it; see :func:`run_model` (the deck and its includes are
@@ -74,5 +80,6 @@ def run_deck(deck: str | Path, out_dir: str | Path, end_time: float | None = Non
     model, files = _read_for_run(deck, strict)
     return run_model(model, out_dir, end_time=end_time, erode=erode, vtk=vtk, quiet=quiet,
                      label=Path(deck).name, restart=restart, dump_cycles=dump_cycles,
-                     overwrite=overwrite, inputs=files, quality=quality, threads=threads,
-                     d3plot=d3plot)
+                     dump_minutes=dump_minutes, keep_dumps=keep_dumps,
+                     dump_at_end=dump_at_end, overwrite=overwrite, inputs=files,
+                     quality=quality, threads=threads, d3plot=d3plot)

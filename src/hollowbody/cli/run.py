@@ -63,6 +63,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--dump-cycles", type=int, default=None, metavar="N",
                    help="write a restart file every N cycles (overrides "
                         "*DATABASE_BINARY_D3DUMP; 0 = none; default: the deck's)")
+    p.add_argument("--dump-minutes", type=float, default=None, metavar="M",
+                   help="write a restart file every M minutes of wall time too (default: "
+                        "not by time)")
+    p.add_argument("--keep-dumps", type=int, default=None, metavar="K",
+                   help="keep only the newest K restart files of --out (default: all)")
+    p.add_argument("--dump-at-end", action="store_true",
+                   help="write a restart file when the run ends normally too, so that it can "
+                        "be continued to a later --end-time with --restart (default: off)")
     p.add_argument("--quality", action="append", default=None, metavar="KEY=VALUE",
                    help="a limit of the run's quality verdict, e.g. hourglass_warn=0.15 "
                         "(repeatable; default: the limits in docs/solver.md)")
@@ -142,6 +150,8 @@ def main(args: argparse.Namespace) -> int:
     result = run_deck(args.deck, out, end_time=args.end_time, erode=args.erode,
                       vtk=args.vtk, d3plot=args.d3plot, quiet=args.quiet, strict=args.strict,
                       restart=args.restart, dump_cycles=args.dump_cycles,
+                      dump_minutes=args.dump_minutes or 0.0, keep_dumps=args.keep_dumps or 0,
+                      dump_at_end=args.dump_at_end,
                       overwrite=args.overwrite, quality=thresholds)
     print(f"{result.status}: {result.reason}")
     print(f"  {result.cycles} cycles, end time {result.end_time_ms:.6g} ms, wall "

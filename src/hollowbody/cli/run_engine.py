@@ -109,6 +109,9 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.solver.outputs import prepare_out_dir
 
     for flag, value in (("--restart", args.restart), ("--dump-cycles", args.dump_cycles),
+                        ("--dump-minutes", args.dump_minutes),
+                        ("--keep-dumps", args.keep_dumps),
+                        ("--dump-at-end", args.dump_at_end or None),
                         ("--erode", args.erode), ("--quality", args.quality)):
         if value is not None:
             raise UserInputError(f"{flag} is an option of hollowbody's own engine; not "

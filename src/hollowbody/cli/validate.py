@@ -13,7 +13,13 @@ DIR/report.md, DIR/report.html, DIR/report.json.
 Exit code 0 when every run ended normally with quality ok, 1 when one did
 not (the report says which and why), 2 for bad input, 130 when interrupted
 (the runs so far are reported). A DIR holding an earlier report or case
-folder is refused unless --overwrite (which deletes only those).
+folder is refused unless --overwrite (which deletes only those) or --resume.
+
+Long validations can be stopped (Ctrl-C) and continued: every run writes a
+restart file every --dump-minutes of wall time and one at its end (the newest
+kept), and --resume with the same cases continues in DIR: runs that ended are
+kept, stopped runs resume from their restart file, runs that ended normally
+are continued to a later --end-time, runs not yet started are started.
 """
 
 from __future__ import annotations
@@ -61,6 +67,13 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     add_external_engine_arguments(p)
     p.add_argument("--dry-run", action="store_true",
                    help="write the set-up decks without running them (default: off)")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the validation in --out: keep the runs that ended, resume "
+                        "the stopped ones from their restart files, extend to a later "
+                        "--end-time, start the others (default: off)")
+    p.add_argument("--dump-minutes", type=float, default=None, metavar="M",
+                   help="a restart file every M minutes of wall time per run, the newest kept "
+                        "(0: none, then a stopped run starts again; default 10)")
     p.add_argument("--report", action="store_true",
                    help="rate and report the runs already in --out again, run nothing "
                         "(default: off)")
@@ -109,6 +122,7 @@ def main(args: argparse.Namespace) -> int:
 
     if args.list:
         return _list()
+    _check_resume(args)
     if args.report:
         return _report_only(args)
     names = list(ORDER) if args.all else list(dict.fromkeys(args.cases))
@@ -141,8 +155,31 @@ def main(args: argparse.Namespace) -> int:
             entry(landmarks, c.name, args.landmarks)
     corridor = _corridor(args)
     tissues = ("solid", "hollow") if args.tissue == "both" else (args.tissue,)
-    _prepare(args.out, names, args.overwrite, args.model)
+    if not args.resume:
+        _prepare(args.out, names, args.overwrite, args.model)
     return _run(args, cases, speeds, tissues, landmarks, corridor)
+
+
+def _check_resume(args: argparse.Namespace) -> None:
+    """--resume and --dump-minutes against the other options (UserInputError)."""
+    from hollowbody.validation.runner import DUMP_MINUTES
+
+    if args.dump_minutes is None:
+        args.dump_minutes = DUMP_MINUTES
+    elif not args.dump_minutes >= 0.0:
+        raise UserInputError(f"--dump-minutes must be >= 0 (got {args.dump_minutes:g})")
+    if not args.resume:
+        return
+    for flag, on in (("--overwrite", args.overwrite), ("--dry-run", args.dry_run),
+                     ("--report", args.report)):
+        if on:
+            raise UserInputError(f"--resume continues the runs in --out; it does not go with "
+                                 f"{flag}")
+    if args.engine != "hollowbody":
+        raise UserInputError(f"--resume needs hollowbody's own engine (restart files); runs on "
+                             f"--engine {args.engine} are started again without it")
+    if not args.out.is_dir():
+        raise UserInputError(f"{args.out}: no such folder to resume (--out)")
 
 
 def _corridor(args: argparse.Namespace):  # noqa: ANN202 - Corridor | None
@@ -182,7 +219,7 @@ def _print(records) -> None:  # noqa: ANN001
 
 def _run(args, cases, speeds, tissues, landmarks, corridor) -> int:  # noqa: ANN001
     from hollowbody.report.validation import write_report
-    from hollowbody.validation.runner import run_case
+    from hollowbody.validation.runner import ValidationInterrupted, run_case
 
     records = []
     interrupted = False
@@ -194,10 +231,16 @@ def _run(args, cases, speeds, tissues, landmarks, corridor) -> int:  # noqa: ANN
                                 landmarks_path=args.landmarks, corridor=corridor,
                                 dry_run=args.dry_run, quiet=False, threads=args.threads,
                                 engine=args.engine, np_=args.np,
-                                engine_path=args.engine_path)
+                                engine_path=args.engine_path, resume=args.resume,
+                                dump_minutes=args.dump_minutes)
+    except ValidationInterrupted as stop:
+        interrupted = True
+        records += stop.records
     except KeyboardInterrupt:
         interrupted = True
-        print("interrupted: reporting the runs so far")
+    if interrupted:
+        print("interrupted: reporting the runs so far; continue with the same command and "
+              "--resume")
     paths = write_report(records, args.out, corridor)
     _print(records)
     print(f"report: {paths['markdown']} and {paths['html']}")

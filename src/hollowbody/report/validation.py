@@ -133,9 +133,10 @@ def _rating_cell(rec: RunRecord, against: str) -> str:
 
 
 def _status(rec: RunRecord) -> str:
-    if rec.status == "normal termination":
-        return "normal"
-    return rec.status
+    status = "normal" if rec.status == "normal termination" else rec.status
+    if rec.resumed:
+        status += f" (resumed {rec.resumed}x)"
+    return status
 
 
 def case_table(records: list[RunRecord]) -> list[str]:

@@ -31,6 +31,7 @@ from hollowbody.io.results.d3plot import available as d3plot_available
 from hollowbody.model.summary import unsupported_entries, unsupported_lines
 from hollowbody.solver import restart as rs
 from hollowbody.solver import threads as th
+from hollowbody.solver.dump_policy import DumpPolicy
 from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
 from hollowbody.solver.outputs import RunOutputs, prepare_out_dir
@@ -58,6 +59,10 @@ class RunOptions:
     restart: resume from this restart file, or from the newest ``d3dumpNN``
     of ``out_dir`` with :data:`NEWEST`; None starts at t = 0.
     dump_cycles: overrides *DATABASE_BINARY_D3DUMP CYCL when given (0 = none).
+    dump_minutes: a restart file every M minutes of wall time as well (0 = none);
+    keep_dumps: keep only the newest K restart files of the folder (0 = all);
+    dump_at_end: a run that ends normally writes a restart file too (so that it
+    can be continued to a later end time); see :mod:`hollowbody.solver.dump_policy`.
     overwrite: an ``out_dir`` holding an earlier run is cleared first (else refused);
     inputs: files the run reads (the deck and its includes), never deleted.
     quality: limits of the run's verdict (:mod:`hollowbody.solver.verdict`);
@@ -78,6 +83,9 @@ class RunOptions:
     label: str = "run"
     restart: Path | str | None = None
     dump_cycles: int | None = None
+    dump_minutes: float = 0.0
+    keep_dumps: int = 0
+    dump_at_end: bool = False
     overwrite: bool = False
     inputs: tuple[Path, ...] = ()
     quality: Thresholds | None = None
@@ -141,6 +149,12 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         n_threads, threads_why = th.resolve(setting, th.model_work(plan))
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    try:
+        dumps = DumpPolicy(cycles=options.dump_cycles if options.dump_cycles is not None
+                           else model.output.d3dump_cycles, minutes=options.dump_minutes,
+                           keep=options.keep_dumps, at_end=options.dump_at_end)
+    except ValueError as exc:
+        raise UserInputError(str(exc)) from None
     if options.d3plot and not d3plot_available():  # before the folder is touched
         raise UserInputError(f"d3plot output needs lasso-python: {D3PLOT_EXTRA}")
     if resume is None:  # a restart continues the folder's run
@@ -149,14 +163,12 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     end_time = options.end_time if options.end_time is not None else model.controls.end_time
     if options.erode is not None:
         plan.erode = bool(options.erode)
-    dump_cycles = options.dump_cycles if options.dump_cycles is not None else \
-        model.output.d3dump_cycles
     state = init_state(model, plan)
     outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
                          resume=resume[2]["outputs"] if resume else None,
                          thresholds=options.quality, d3plot=options.d3plot)
     extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model),
-                   "threads": n_threads}
+                   "threads": n_threads, "_wall0": wall0, "_wall_before": 0.0}
     if resume is None:
         outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
                     f"{plan.element_counts()} ; end time {end_time:g} ms; erosion "
@@ -190,18 +202,19 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                 if watch.compiled:
                     progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
                 progress.begin(state.t)
-                _loop(model, plan, state, outputs, progress, stop, end_time, dump_cycles,
-                      extra)
+                _loop(model, plan, state, outputs, progress, stop, end_time, dumps, extra)
         except Termination as term:
             status, reason, where = term.status, term.reason, term.where
         except KeyboardInterrupt:
             complete = False
             status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
     extra["compile_seconds"] = round(watch.seconds, 3)
-    if status != NORMAL and state.cycle > 0:
-        _final_dump(model, state, outputs, extra, complete)
+    if (status != NORMAL or dumps.at_end) and state.cycle > 0:
+        _final_dump(model, state, outputs, extra, complete, dumps)
     wall = time.perf_counter() - wall0
-    summary = outputs.finish(state, status, reason, where, wall, extra)
+    extra["wall_seconds_total"] = round(_wall_total(extra), 3)
+    summary = outputs.finish(state, status, reason, where, wall,
+                             {k: v for k, v in extra.items() if not k.startswith("_")})
     return RunResult(status, reason, state.t, state.cycle, summary, out)
 
 
@@ -239,13 +252,14 @@ def _resume(model, plan, state: State, outputs: RunOutputs, resume: tuple,  # no
     extra["resumed_from"] = {"file": path.name, "time_ms": header["time_ms"],
                              "cycle": header["cycle"]}
     extra["resumed"] = list(payload.get("resumed", [])) + [extra["resumed_from"]]
+    extra["_wall_before"] = float(payload.get("wall_seconds", 0.0))
     outputs.log(f"resumed from restart file {path.name} at t={state.t:.6g} ms, cycle "
                 f"{state.cycle}; end time {end_time:g} ms; erosion "
                 f"{'on' if plan.erode else 'off'}")
 
 
 def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  # noqa: ANN001
-          stop: _Stop, end_time: float, dump_cycles: int, extra: dict) -> None:
+          stop: _Stop, end_time: float, dumps: DumpPolicy, extra: dict) -> None:
     dtmin = model.controls.dtmin
     while state.t < end_time * (1.0 - 1e-12):
         dt = min(state.dt_next, end_time - state.t) if end_time > state.t else 0.0
@@ -268,11 +282,18 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
                               f"at t={state.t:.6g} ms", element=elem, part=pid)
         outputs.record(state)
         progress.update(state.t, state.cycle, dt)
-        if dump_cycles > 0 and state.cycle % dump_cycles == 0 and running:
-            _dump(model, state, outputs, extra)
+        if running and dumps.active and dumps.due(state.cycle):
+            _dump(model, state, outputs, extra, dumps)
         if stop.requested is not None and running:
             raise Termination(INTERRUPT, f"interrupted by the user ({stop.requested}) at "
                               f"t={state.t:.6g} ms")
+
+
+def _wall_total(extra: dict) -> float:
+    """Wall seconds of the run so far: this process's share plus, for a resumed run,
+    the earlier processes' up to the restart file it resumed from (the time they spent
+    after it was computed again)."""
+    return extra["_wall_before"] + time.perf_counter() - extra["_wall0"]
 
 
 def _drain(state: State, outputs: RunOutputs) -> None:
@@ -281,8 +302,10 @@ def _drain(state: State, outputs: RunOutputs) -> None:
     state.events.clear()
 
 
-def _dump(model, state: State, outputs: RunOutputs, extra: dict) -> None:  # noqa: ANN001
-    """Write the next restart file of the run folder."""
+def _dump(model, state: State, outputs: RunOutputs, extra: dict,  # noqa: ANN001
+          dumps: DumpPolicy) -> None:
+    """Write the next restart file of the run folder (then delete the older ones
+    that ``dumps`` does not keep)."""
     path = rs.next_dump_path(outputs.out)
     try:
         snap = snapshot(state)
@@ -292,15 +315,20 @@ def _dump(model, state: State, outputs: RunOutputs, extra: dict) -> None:  # noq
     files = [*extra["restart_files"], {"file": path.name, "time_ms": state.t,
                                        "cycle": state.cycle}]
     payload = {"state": snap, "outputs": outputs.position(), "restart_files": files,
-               "resumed": list(extra.get("resumed", []))}
+               "resumed": list(extra.get("resumed", [])),
+               "wall_seconds": _wall_total(extra)}
     rs.write_dump(path, model, payload, state.t, state.cycle)
-    extra["restart_files"] = files
-    outputs.log(f"restart file {path.name} written at t={state.t:.6g} ms, cycle {state.cycle}")
+    dumps.written()
+    gone = set(dumps.prune(outputs.out))
+    extra["restart_files"] = [f for f in files if f["file"] not in gone]
+    outputs.log(f"restart file {path.name} written at t={state.t:.6g} ms, cycle {state.cycle}"
+                + (f" ({', '.join(sorted(gone))} deleted)" if gone else ""))
 
 
 def _final_dump(model, state: State, outputs: RunOutputs, extra: dict,  # noqa: ANN001
-                complete: bool) -> None:
-    """The restart file of an interrupted or failed run (when its State can be resumed)."""
+                complete: bool, dumps: DumpPolicy) -> None:
+    """The restart file of an interrupted or failed run, or of one that ended normally
+    with ``dumps.at_end`` (when its State can be resumed)."""
     if not complete:
         outputs.log("no restart file written: the run was stopped inside a cycle",
                     logging.WARNING)
@@ -310,6 +338,6 @@ def _final_dump(model, state: State, outputs: RunOutputs, extra: dict,  # noqa: 
                     logging.WARNING)
         return
     try:  # before the final row is written: a resumed run continues without it
-        _dump(model, state, outputs, extra)
+        _dump(model, state, outputs, extra, dumps)
     except OSError as exc:
         outputs.log(f"could not write the restart file: {exc}", logging.ERROR)

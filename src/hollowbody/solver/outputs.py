@@ -225,6 +225,9 @@ class RunOutputs:
                                      pos.get("jntforc"))
         self.last_energies: dict[str, float] = {}
         self._last_forced: tuple[int, float] | None = None
+        #: (cycle, time) of each output's last row: a forced write at the end of a run
+        #: does not write a row again that its interval wrote at the same state
+        self._rows_at: dict[str, tuple[int, float]] = {}
         if resume is not None:
             for name, nxt in resume["clocks"].items():
                 self.clocks[name].next = nxt
@@ -234,6 +237,7 @@ class RunOutputs:
             self.last_energies = dict(resume["last_energies"])
             forced = resume["last_forced"]
             self._last_forced = tuple(forced) if forced is not None else None
+            self._rows_at = {k: tuple(v) for k, v in resume.get("rows_at", {}).items()}
 
     def position(self) -> dict:
         """Where every output stands (file offsets, clocks, states written): saved in
@@ -244,7 +248,8 @@ class RunOutputs:
                 "vtk_entries": list(self.vtk.entries) if self.vtk is not None else [],
                 "d3plot_states": len(self.d3plot.states) if self.d3plot is not None else 0,
                 "last_energies": dict(self.last_energies),
-                "last_forced": self._last_forced}
+                "last_forced": self._last_forced,
+                "rows_at": dict(self._rows_at)}
 
     # -- logging ---------------------------------------------------------------
     def log(self, message: str, level: int = logging.INFO) -> None:
@@ -259,7 +264,8 @@ class RunOutputs:
             self._last_forced = (state.cycle, state.t)
         self._contact_events(state)
         t = state.t
-        if self.clocks["glstat"].due(t) or force:
+        key = (state.cycle, t)
+        if self._due("glstat", key, force):
             e = energies(self.asm, state, self._full_step_v(state))
             self.last_energies = e
             self.glstat.write([t, state.cycle, state.dt_next, e["kinetic"], e["internal"],
@@ -272,39 +278,48 @@ class RunOutputs:
                                               e["hourglass"], part_e, part_hg, state.dt_next,
                                               elem, pid, total=e["total"]):
                     self.log(w["message"], logging.WARNING)
-        if self.clocks["rcforc"].due(t) or force:
+        if self._due("rcforc", key, force):
             for c in self.asm.contacts:
                 self.rcforc.write([t, c.cid, *c.slave_force, *c.master_force])
-        if self.clocks["nodout"].due(t) or force:
+        if self._due("nodout", key, force):
             hist = self.model.output.history_nodes
             if hist.size:
                 u = state.x[hist] - self.asm.node_x0[hist]
                 for k, i in enumerate(hist):
                     self.nodout.write([t, int(self.model.node_ids[i]), *u[k], *state.v[i]])
-        if self.clocks["rbdout"].due(t) or force:
+        if self._due("rbdout", key, force):
             for b in self.asm.bodies:
                 if getattr(b, "iprt", 0) == 2:  # a nodal rigid body's IPRT = 2: not written
                     continue
                 self.rbdout.write([t, b.pid, *(b.xc - b.xc0), *b.vel, *b.force])
-        if self.clocks["spcforc"].due(t) or force:
+        if self._due("spcforc", key, force):
             self.spcforc.write([t, *self.asm.constraints.reactions(state.f)])
-        if self.clocks["rwforc"].due(t) or force:
+        if self._due("rwforc", key, force):
             for w in (tm for tm in getattr(self.asm, "terms", ()) if hasattr(tm, "rwid")):
                 self.rwforc.write([t, w.rwid, w.normal_force(), w.tangential_force(), *w.force])
-        if self.clocks["matsum"].due(t) or force:
+        if self._due("matsum", key, force):
             self._write_matsum(state)
-        if self.clocks["deforc"].due(t) or force:
+        if self._due("deforc", key, force):
             for rt in self.asm.elements:
                 if getattr(rt, "family", "") == "discrete":
                     for i in np.nonzero(rt.print_flag == 0)[0]:
                         self.deforc.write([t, int(rt.elem_ids[i]), rt.force[i], rt.defl[i],
                                            rt.energy[i]])
-        if (self.clocks["jntforc"].due(t) or force) and self.joint_term is not None:
+        if self._due("jntforc", key, force) and self.joint_term is not None:
             for row in self.joint_term.jntforc_rows(t, state.x):
                 self.jntforc.write(row)
         if (self.vtk is not None or self.d3plot is not None) and \
-                (self.state_clock.due(t) or force):
+                self._due("states", key, force):
             self.write_state(state)
+
+    def _due(self, name: str, key: tuple[int, float], force: bool) -> bool:
+        """Output ``name`` (a history or ``states``) writes a row at ``key`` = (cycle,
+        time): its interval is due, or ``force`` and it has no row there yet."""
+        clock = self.state_clock if name == "states" else self.clocks[name]
+        if clock.due(key[1]) or (force and self._rows_at.get(name) != key):
+            self._rows_at[name] = key
+            return True
+        return False
 
     def _contact_events(self, state) -> None:  # noqa: ANN001
         """Log the contacts' new warnings (nodes pushed through a surface)."""

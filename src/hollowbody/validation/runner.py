@@ -23,12 +23,25 @@ from typing import Any
 
 from hollowbody.errors import UserInputError
 from hollowbody.rating.corridors import Corridor
+from hollowbody.solver.step import INTERRUPT
 from hollowbody.validation.cases import Case, end_time_of
 from hollowbody.validation.ratings import Rating, rate_run
 from hollowbody.validation.setup import Setup
 from hollowbody.validation.signals import Signals, read_signals
 
 TISSUES = ("solid", "hollow")
+#: Restart files of a validation run: one every this many minutes of wall time, the
+#: newest kept, one more at a normal end (``--resume`` continues or extends the run).
+DUMP_MINUTES = 10.0
+
+
+class ValidationInterrupted(KeyboardInterrupt):
+    """A run was stopped by the user (Ctrl-C, SIGTERM): the validation stops too; the
+    records made so far travel with it."""
+
+    def __init__(self, records: list[RunRecord]) -> None:
+        super().__init__("interrupted by the user")
+        self.records = records
 
 
 @dataclass
@@ -45,6 +58,7 @@ class RunRecord:
     quality_reasons: list[str] = field(default_factory=list)
     where: dict[str, Any] = field(default_factory=dict)
     wall_seconds: float | None = None
+    resumed: int = 0
     setup_seconds: float | None = None
     cycles: int | None = None
     energy_ratio: float | None = None
@@ -111,7 +125,8 @@ def _read_summary(rec: RunRecord) -> None:
     rec.quality_reasons = [q.get("message", str(q)) if isinstance(q, dict) else str(q)
                            for q in d.get("quality_reasons", [])]
     rec.where = {k[len("error_"):]: v for k, v in d.items() if k.startswith("error_")}
-    rec.wall_seconds = d.get("wall_seconds")
+    rec.wall_seconds = d.get("wall_seconds_total", d.get("wall_seconds"))
+    rec.resumed = len(d.get("resumed", []))
     rec.cycles = d.get("cycles")
     rec.energy_ratio = d.get("energy_ratio")
     rec.elements = {k: v for k, v in d.get("element_counts", {}).items() if v}
@@ -145,20 +160,73 @@ def _run_on_engine(s: Setup, deck: Path, work: Path, engine: str, np_: int,
     return work
 
 
+def _execute(rec: RunRecord, s: Setup, deck: Path, *, restart: bool, quiet: bool,
+             threads: int | str | None, engine: str, np_: int, engine_path: str | None,
+             dump_minutes: float) -> None:
+    """Run ``deck`` into ``rec.folder`` (from t = 0, or from its newest restart file
+    when ``restart``) and read what it wrote. A run stopped by the user raises
+    :class:`KeyboardInterrupt` after its record is filled."""
+    if engine == "hollowbody":
+        from hollowbody.api import run_deck
+
+        res = run_deck(deck, rec.folder, end_time=s.end_time, quiet=quiet, vtk=False,
+                       overwrite=not restart, threads=threads,
+                       restart="newest" if restart else None,
+                       dump_minutes=dump_minutes, keep_dumps=1 if dump_minutes > 0 else 0,
+                       dump_at_end=dump_minutes > 0)
+        interrupted = res.status == INTERRUPT
+    else:
+        rec.folder = _run_on_engine(s, deck, rec.folder / engine, engine, np_, threads,
+                                    engine_path, quiet)
+        interrupted = False
+    _read_summary(rec)
+    _read_results(rec, s)
+    if interrupted:
+        raise KeyboardInterrupt
+
+
 def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 30.0,
             end_time: float | None = None, model: Path | None = None,
             landmarks: dict | None = None, landmarks_path: Path | None = None,
             dry_run: bool = False, quiet: bool = True, threads: int | str | None = None,
             engine: str = "hollowbody", np_: int = 1, engine_path: str | None = None,
+            resume: bool = False, dump_minutes: float = DUMP_MINUTES,
             log: Callable[[str], None] = print) -> RunRecord:
     """Set up, write and (unless ``dry_run``) run one speed and tissue of ``case``.
 
     ``engine``: ``hollowbody`` (the embedded solver), ``lsdyna`` or ``openradioss``
     (run in ``<folder>/<engine>`` with ``np_`` ranks; their results are converted to
-    the same histories, :mod:`hollowbody.engines`)."""
+    the same histories, :mod:`hollowbody.engines`). ``resume``: a run already in its
+    folder is kept, resumed from its newest restart file or extended to a later
+    ``end_time`` (:mod:`hollowbody.validation.resume`) instead of started again.
+    ``dump_minutes``: a restart file every this many minutes of wall time (0: none;
+    hollowbody engine). A run stopped by the user raises :class:`KeyboardInterrupt`
+    (:func:`run_case` then reads its record back from its folder)."""
+    from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
+
     label = "user" if model is not None else tissue
     folder = out / case.name / f"{speed:g}ms" / label
     rec = RunRecord(case.name, speed, label, folder)
+    opts = dict(quiet=quiet, threads=threads, engine=engine, np_=np_,
+                engine_path=engine_path, dump_minutes=dump_minutes)
+    if resume and engine == "hollowbody":
+        action, why = resume_action(folder, end_time)
+        if action in (KEEP, RESUME):
+            s = update_end_time(folder, end_time) if action == RESUME else \
+                Setup.from_json(json.loads((folder / "setup.json").read_text()))
+            rec.setup = s.to_json()
+            log(f"{case.name} {speed:g} m/s {label}: {why}")
+            if action == KEEP:
+                _read_summary(rec)
+                if (folder / "rcforc.csv").is_file():
+                    _read_results(rec, s)
+                return rec
+            try:
+                _execute(rec, s, folder / "deck.k", restart=True, **opts)
+            except UserInputError as err:  # e.g. a damaged restart file: say why
+                rec.status, rec.reason = "failed", str(err)
+            return rec
+        log(f"{case.name} {speed:g} m/s {label}: {why}")
     log(f"{case.name} {speed:g} m/s {label}: building the set-up")
     t0 = time.perf_counter()
     s = build_setup(case, speed, tissue, mesh, end_time, model, landmarks, landmarks_path)
@@ -171,25 +239,24 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     log(f"{case.name} {speed:g} m/s {label}: running {s.end_time:g} ms on {engine} -> "
         f"{folder}")
     try:
-        if engine == "hollowbody":
-            from hollowbody.api import run_deck
-
-            run_deck(deck, folder, end_time=s.end_time, quiet=quiet, vtk=False,
-                     overwrite=True, threads=threads)
-        else:
-            rec.folder = _run_on_engine(s, deck, folder / engine, engine, np_, threads,
-                                        engine_path, quiet)
-    except KeyboardInterrupt:
-        rec.status, rec.reason = "interrupted", "stopped by the user"
-        _read_summary(rec)
-        _read_results(rec, s)
-        raise
+        _execute(rec, s, deck, restart=False, **opts)
     except UserInputError as err:  # a deck the run refuses: keep the record, say why
         rec.status, rec.reason = "failed", str(err)
-        return rec
-    _read_summary(rec)
-    _read_results(rec, s)
     return rec
+
+
+def rate_records(records: list[RunRecord], corridor: Corridor | None = None) -> None:
+    """Rate every record with signals against the test data and, hollow, against the
+    solid run of the same case and speed among ``records``."""
+    from hollowbody.validation.cases import CASES
+
+    for r in records:
+        if r.signals is None:
+            continue
+        solid = next((x for x in records if x.case == r.case and x.speed == r.speed
+                      and x.tissue == "solid" and x is not r), None)
+        twin = solid.signals if solid is not None and solid.signals is not None else None
+        r.ratings = rate_run(CASES[r.case], r.speed, r.signals, twin, corridor)
 
 
 def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], out: Path, *,
@@ -197,27 +264,41 @@ def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], ou
              landmarks: dict | None = None, landmarks_path: Path | None = None,
              corridor: Corridor | None = None, dry_run: bool = False, quiet: bool = True,
              threads: int | str | None = None, engine: str = "hollowbody", np_: int = 1,
-             engine_path: str | None = None,
+             engine_path: str | None = None, resume: bool = False,
+             dump_minutes: float = DUMP_MINUTES,
              log: Callable[[str], None] = print) -> list[RunRecord]:
-    """Every speed and tissue of ``case``, rated (hollow also against solid)."""
+    """Every speed and tissue of ``case``, rated (hollow also against solid).
+
+    A run stopped by the user raises :class:`ValidationInterrupted` carrying the
+    records so far (the stopped run's included, rated)."""
     records: list[RunRecord] = []
     for speed in speeds:
-        by_tissue: dict[str, RunRecord] = {}
         for tissue in (("user",) if model is not None else tissues):
-            rec = run_one(case, speed, tissue, out, mesh=mesh,
-                          end_time=end_time if end_time is not None
-                          else end_time_of(case, speed),
-                          model=model, landmarks=landmarks, landmarks_path=landmarks_path,
-                          dry_run=dry_run, quiet=quiet, threads=threads, engine=engine,
-                          np_=np_, engine_path=engine_path, log=log)
-            by_tissue[rec.tissue] = rec
+            label = "user" if model is not None else tissue
+            try:
+                rec = run_one(case, speed, tissue, out, mesh=mesh,
+                              end_time=end_time if end_time is not None
+                              else end_time_of(case, speed),
+                              model=model, landmarks=landmarks, landmarks_path=landmarks_path,
+                              dry_run=dry_run, quiet=quiet, threads=threads, engine=engine,
+                              np_=np_, engine_path=engine_path, resume=resume,
+                              dump_minutes=dump_minutes, log=log)
+            except KeyboardInterrupt:
+                folder = out / case.name / f"{speed:g}ms" / label
+                stopped = RunRecord(case.name, speed, label, folder)
+                if (folder / "setup.json").is_file():
+                    s = Setup.from_json(json.loads((folder / "setup.json").read_text()))
+                    stopped.setup = s.to_json()
+                    _read_summary(stopped)
+                    if (folder / "rcforc.csv").is_file():
+                        _read_results(stopped, s)
+                if stopped.status == "not run":
+                    stopped.status, stopped.reason = "interrupted", "stopped by the user"
+                records.append(stopped)
+                rate_records(records, corridor)
+                raise ValidationInterrupted(records) from None
             records.append(rec)
-        solid = by_tissue.get("solid")
-        for rec in by_tissue.values():
-            if rec.signals is None:
-                continue
-            twin = solid.signals if (solid is not None and rec is not solid) else None
-            rec.ratings = rate_run(case, speed, rec.signals, twin, corridor)
+    rate_records(records, corridor)
     return records
 
 
@@ -242,11 +323,5 @@ def collect_records(out: Path, corridor: Corridor | None = None) -> list[RunReco
             _read_results(rec, s)
         records.append(rec)
     records.sort(key=lambda r: (ORDER.index(r.case), r.speed, r.tissue != "solid"))
-    for r in records:
-        if r.signals is None:
-            continue
-        solid = next((x for x in records if x.case == r.case and x.speed == r.speed
-                      and x.tissue == "solid" and x is not r), None)
-        twin = solid.signals if solid is not None else None
-        r.ratings = rate_run(CASES[r.case], r.speed, r.signals, twin, corridor)
+    rate_records(records, corridor)
     return records
