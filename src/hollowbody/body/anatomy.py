@@ -14,8 +14,8 @@ by the frame, so a posture is only a set of frames and joint centres.
 - Trunk (:func:`trunk`): one layered tube from the hip joints' height to C7:
   the spine's shell tube (five rigid zones T1, T8, T12, L3, sacrum, split at
   the levels of :data:`hollowbody.body.skeleton.SPINE_ZONES`) behind the
-  centre, thoracic or abdominal organ hexahedra, a rib-cage shell (deformable
-  bone, from T12/L1 up) or the pelvis shell (rigid, below L5/S1) on an inner
+  centre, thoracic or abdominal organ hexahedra, the rib cage (from T12/L1 up;
+  :func:`rib_cage_roles`) or the pelvis shell (rigid, below L5/S1) on an inner
   ring, subcutaneous fat (gluteal flesh below L5/S1) and skin.
 - Head, neck, hands and feet (:func:`rigid_shell`): closed rigid shells
   (ellipsoids, a cylinder, boxes) whose mass and inertia are given by
@@ -57,7 +57,13 @@ LIMB_SHAPES = {
 #: lower trunk's moments of inertia are de Leva's.
 TRUNK_SHAPE = dict(a=(0.088, 0.085, 0.092, 0.080), b=(0.058, 0.062, 0.060, 0.052),
                    spine_r=0.012, spine_back=0.30, fat=0.85)
-RIB_T = 2.0   # mm, smeared rib-cage shell
+RIB_T = 2.0   # mm, rib-cage shell (ribs, intercostal layers, costal cartilage, sternum)
+#: Costal cartilage: the rib rows' elements within this angle (deg, parametric angle
+#: of the trunk's section ellipse) of the anterior mid-line, beside the sternum.
+CARTILAGE_ANGLE = 45.0
+#: Sternum: the column of rib-cage elements on the anterior mid-line (half-width as a
+#: fraction of stature; at least the one column centred on it), from XYPH up.
+STERNUM_HALF_WIDTH = 0.011
 BONE_T_PELVIS = 3.0
 SKIN_T = 1.0
 
@@ -228,8 +234,18 @@ def trunk(body: BodyMesh, sk: Skeleton, mesh: float, scale: float = 1.0
     abdomen = rows[(owner == 1) | (owner == 2)]
     pelvis = rows[owner == 0]
     c = tube.quads(n_org, thorax) + first
-    add("ribs", PartMesh("rib cage", "trunk", "shell", "cortical", c, rows_seg(thorax, nt),
-                         RIB_T))
+    seg = rows_seg(thorax, nt)
+    theta = np.pi / nt + 2.0 * np.pi * (np.arange(nt) + 0.5) / nt  # element centres
+    half = STERNUM_HALF_WIDTH * h / float(np.mean(a[thorax]))  # rad, arc / half-width
+    role = rib_cage_roles(thorax.size, theta, half, z_mid[thorax] >= zx)
+    for key_, r_, mat, label in (("ribs", "rib", "cortical", "ribs"),
+                                 ("intercostal", "intercostal", "intercostal",
+                                  "intercostal layers"),
+                                 ("costal_cartilage", "cartilage", "costal_cartilage",
+                                  "costal cartilage"),
+                                 ("sternum", "sternum", "cortical", "sternum")):
+        m = role.ravel() == r_
+        add(key_, PartMesh(label, "trunk", "shell", mat, c[m], seg[m], RIB_T))
     c = tube.quads(n_org, pelvis) + first
     add("pelvis", PartMesh("pelvis", "trunk", "shell", "rigid", c, rows_seg(pelvis, nt),
                            BONE_T_PELVIS, rigid=True))
@@ -249,6 +265,34 @@ def trunk(body: BodyMesh, sk: Skeleton, mesh: float, scale: float = 1.0
     add("skin", PartMesh("trunk skin", "trunk", "shell", "skin", c, rows_seg(rows, nt),
                          SKIN_T))
     return out
+
+
+def rib_cage_roles(n_rows: int, theta: np.ndarray, sternum_half: float,
+                   sternum_rows: np.ndarray) -> np.ndarray:
+    """(n_rows, nt) role of each rib-cage shell: ``rib``, ``intercostal``,
+    ``cartilage`` or ``sternum``; rows bottom to top, ``theta`` (nt,) element centre
+    angles (rad, 0 = anterior).
+
+    The human rib cage is ribs, curved bones about as high as the spaces between them,
+    joined by the intercostal muscles and membranes, and in front by the costal
+    cartilages to the sternum. At the model's mesh the rows of the cage's shell take
+    those roles in turn: rows alternate rib / intercostal from the top one down (half
+    the height is bone, at any mesh); a rib row's elements within
+    :data:`CARTILAGE_ANGLE` of the anterior mid-line are costal cartilage; the
+    column(s) on the mid-line (within ``sternum_half`` rad, at least the nearest one)
+    are the sternum in the rows where ``sternum_rows`` (n_rows,) is true (XYPH up).
+    Without this the cage was one continuous bone shell, which carries a lateral load
+    by membrane action round and along the chest, far stiffer than ribs that bend.
+    """
+    ang = np.abs((np.asarray(theta) + np.pi) % (2.0 * np.pi) - np.pi)
+    rib_row = (n_rows - 1 - np.arange(n_rows)) % 2 == 0
+    role = np.where(rib_row[:, None], "rib", "intercostal").astype(object)
+    role = np.broadcast_to(role, (n_rows, ang.size)).copy()
+    front = ang < np.radians(CARTILAGE_ANGLE)
+    role[rib_row[:, None] & front[None, :]] = "cartilage"
+    mid = (ang <= sternum_half) | (ang == ang.min())
+    role[np.asarray(sternum_rows, bool)[:, None] & mid[None, :]] = "sternum"
+    return role
 
 
 def closed_shell(shape: str, semi: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:

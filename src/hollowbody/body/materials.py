@@ -1,6 +1,6 @@
 """Materials of the pedestrian model (deck units: GPa, kg/mm^3) and their sources.
 
-- cortical bone (long bones, rib cage): *MAT_PLASTIC_KINEMATIC, E 15 GPa,
+- cortical bone (long bones, ribs, sternum): *MAT_PLASTIC_KINEMATIC, E 15 GPa,
   PR 0.3, yield 0.1 GPa, tangent 0.5 GPa, density 2.0e-6 kg/mm^3: the values of
   the generated limb (:mod:`hollowbody.scenarios.limb`), representative of
   human femoral cortical bone (Reilly and Burstein, J. Biomech. 8:393-405,
@@ -16,6 +16,14 @@
   air fraction of about one half): the lungs give way to the chest wall
   instead of holding it as an incompressible core;
 - skin: *MAT_ELASTIC E 5 MPa, PR 0.45, 1.1e-6 kg/mm^3, 1 mm (as the limb);
+- costal cartilage: *MAT_ELASTIC E 30 MPa, PR 0.45, 1.1e-6 kg/mm^3: the mean
+  unconfined-compression modulus of human costal cartilage, 32.9 +- 17.9 MPa
+  (Weber, Rothschild and Niehoff, Sci. Rep. 11:13618, 2021; their indentation
+  moduli are 11-15 MPa);
+- intercostal layers (the rib cage's rows between ribs: intercostal muscles
+  and membranes): *MAT_ELASTIC E 5 MPa, PR 0.45, 1.1e-6 kg/mm^3 (the skin's
+  values, a choice: a fibrous soft-tissue layer, three orders softer than the
+  ribs it joins);
 - intervertebral discs (the spine tube's deformable rows between rigid
   zones): *MAT_ELASTIC E 10 MPa, PR 0.45, 1.1e-6 (a choice; the spine's
   stiffness is in its joints);
@@ -58,6 +66,8 @@ MATERIALS = {
     "abdominal_organs": BodyMaterial("rubber", 1.0e-6, tissue="muscle",
                                      title="abdominal organs"),
     "skin": BodyMaterial("elastic", 1.1e-6, 0.005, 0.45, title="skin"),
+    "costal_cartilage": BodyMaterial("elastic", 1.1e-6, 0.030, 0.45, title="costal cartilage"),
+    "intercostal": BodyMaterial("elastic", 1.1e-6, 0.005, 0.45, title="intercostal layers"),
     "disc": BodyMaterial("elastic", 1.1e-6, 0.010, 0.45, title="intervertebral discs"),
     "rigid": BodyMaterial("rigid", 1.0e-6, 15.0, 0.3, title="rigid"),
 }

@@ -181,3 +181,53 @@ def test_command_line(tmp_path, capsys) -> None:
     assert main(["pedestrian", "--out", str(out), "--mesh", "50"]) == 2  # exists
     assert main(["pedestrian", "--out", str(tmp_path / "x"), "--mesh", "5"]) == 2
     assert main(["check", str(out / "pedestrian.k")]) == 0
+
+
+def test_rib_cage_roles_alternate_ribs_and_put_cartilage_and_sternum_in_front() -> None:
+    """Rows alternate rib / intercostal from the top one down (half the height bone);
+    rib rows' elements within CARTILAGE_ANGLE of the anterior mid-line are cartilage;
+    the mid-line column is sternum in the rows asked (all roles in it) and cartilage
+    below them."""
+    from hollowbody.body.anatomy import CARTILAGE_ANGLE, rib_cage_roles
+
+    nt = 28
+    theta = np.pi / nt + 2.0 * np.pi * (np.arange(nt) + 0.5) / nt
+    ster = np.array([False, False, False, True, True, True])
+    role = rib_cage_roles(6, theta, 0.05, ster)
+    ang = np.degrees(np.abs((theta + np.pi) % (2 * np.pi) - np.pi))
+    mid = int(np.argmin(ang))
+    assert list(role[:, mid]) == ["intercostal", "cartilage", "intercostal",
+                                  "sternum", "sternum", "sternum"]
+    for k in (1, 3, 5):  # rib rows, from the top one
+        side = np.arange(nt) != mid
+        front = ang < CARTILAGE_ANGLE
+        assert set(role[k, side & front]) == {"cartilage"}
+        assert set(role[k, ~front]) == {"rib"}
+    for k in (0, 2, 4):
+        assert set(role[k, np.arange(nt) != mid]) == {"intercostal"}
+    # a sternum half-width of more than a column takes the neighbours too
+    wide = rib_cage_roles(6, theta, np.radians(15.0), ster)
+    assert (wide[3:] == "sternum").sum() == 3 * 3
+
+
+def test_rib_cage_parts_materials_and_shares(body) -> None:
+    """The cage is four shell parts on the same ring: ribs and sternum of cortical bone,
+    costal cartilage (E 30 MPa) and intercostal layers (E 5 MPa); about half its
+    elements are intercostal (rows alternate), the ribs are the largest bone part, and
+    the rib-cage rows end where they did (the cage covers T12/L1 up)."""
+    from hollowbody.body.materials import MATERIALS
+
+    parts = {p.name: p for p in body.mesh.parts if p.region == "trunk"}
+    ribs, ic = parts["ribs"], parts["intercostal layers"]
+    cart, ster = parts["costal cartilage"], parts["sternum"]
+    assert (ribs.material, ster.material) == ("cortical", "cortical")
+    assert MATERIALS[cart.material].e == pytest.approx(0.030)
+    assert MATERIALS[ic.material].e == pytest.approx(0.005)
+    n = [p.conn.shape[0] for p in (ribs, ic, cart, ster)]
+    total = sum(n)
+    assert 0.4 <= n[1] / total <= 0.6
+    assert n[0] > n[2] > n[3] > 0
+    x = body.mesh.coords()
+    zc = {k: x[p.conn].mean(axis=1)[:, 2] for k, p in (("r", ribs), ("i", ic))}
+    assert zc["r"].max() > zc["i"].max()  # the top row is a rib
+    assert abs(zc["r"].min() - zc["i"].min()) < 60.0  # both reach the cage's bottom
