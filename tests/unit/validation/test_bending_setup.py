@@ -234,7 +234,8 @@ def _user_files(tmp_path, body, case="thigh-bending", **entry):
          "point": list(ref.impact_point), "direction": [0, -1, 0],
          "contact_parts": [seg.pids["skin"]]}
     e.update(entry)
-    e = {k: v for k, v in e.items() if v is not None}
+    e = {k: seg.pids[v] if isinstance(v, str) and v in seg.pids and k.endswith("_part")
+         else v for k, v in e.items() if v is not None}
     lm = tmp_path / "landmarks.json"
     lm.write_text(json.dumps({case: e}))
     return deck, lm, ref, seg
@@ -292,7 +293,7 @@ def test_user_node_supports_are_spcs(tmp_path, body) -> None:
 
 BAD = [
     ({"proximal_part": 999}, "proximal_part", "not in"),
-    ({"proximal_part": 15}, "proximal_part", "not rigid"),
+    ({"proximal_part": "muscle"}, "proximal_part", "not rigid"),  # the segment's muscle
     ({"proximal_nodes": [1, 2]}, "proximal_nodes", "give one of"),
     ({"distal_part": None}, "distal_nodes", "neither"),
     ({"distal_part": None, "distal_nodes": [10**8]}, "distal_nodes", "not in"),
