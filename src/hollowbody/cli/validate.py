@@ -72,8 +72,10 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
                         "the stopped ones from their restart files, extend to a later "
                         "--end-time, start the others (default: off)")
     p.add_argument("--dump-minutes", type=float, default=None, metavar="M",
-                   help="a restart file every M minutes of wall time per run, the newest kept "
-                        "(0: none, then a stopped run starts again; default 10)")
+                   help="a restart file every M minutes of wall time per run and one at its "
+                        "end, the newest kept (0: only the one a stop writes, all kept; a "
+                        "killed run then starts again and an ended one cannot be extended; "
+                        "default 10)")
     p.add_argument("--report", action="store_true",
                    help="rate and report the runs already in --out again, run nothing "
                         "(default: off)")

@@ -59,6 +59,14 @@ class DumpPolicy:
         """A restart file was just written: the wall-time interval starts again."""
         self._last = time.perf_counter()
 
+    def kept_after(self, folder: Path, new: str) -> set[str] | None:
+        """Names of the restart files of ``folder`` that :meth:`prune` keeps once ``new``
+        is written (None: all are kept)."""
+        if self.keep <= 0:
+            return None
+        names = [p.name for p in rs.dump_files(folder) if p.name != new] + [new]
+        return set(names[-self.keep:])
+
     def prune(self, folder: Path) -> list[str]:
         """Delete the older restart files of ``folder`` beyond the newest ``keep``;
         the names deleted."""

@@ -103,6 +103,9 @@ class RunResult:
     cycles: int
     summary: dict = field(default_factory=dict)
     out_dir: Path | None = None
+    #: a stop (Ctrl-C, SIGTERM) asked for after the last cycle had begun: the run
+    #: ended as it would have, but its caller should stop too
+    stop_requested: str | None = None
 
 
 class _Stop:
@@ -191,31 +194,36 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                         interval=options.progress_interval, log=outputs.log)
     watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."),
                          seconds=setup_compile.seconds, count=setup_compile.count)
-    with _Stop() as stop, th.using(n_threads), watch:
-        try:
-            with progress:
-                progress.attach(outputs.logger)
-                if resume is None:
-                    _start(model, plan, state, outputs)
-                else:
-                    _resume(model, plan, state, outputs, resume, end_time, extra)
-                if watch.compiled:
-                    progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
-                progress.begin(state.t)
-                _loop(model, plan, state, outputs, progress, stop, end_time, dumps, extra)
-        except Termination as term:
-            status, reason, where = term.status, term.reason, term.where
-        except KeyboardInterrupt:
-            complete = False
-            status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
-    extra["compile_seconds"] = round(watch.seconds, 3)
-    if (status != NORMAL or dumps.at_end) and state.cycle > 0:
-        _final_dump(model, state, outputs, extra, complete, dumps)
-    wall = time.perf_counter() - wall0
-    extra["wall_seconds_total"] = round(_wall_total(extra), 3)
-    summary = outputs.finish(state, status, reason, where, wall,
-                             {k: v for k, v in extra.items() if not k.startswith("_")})
-    return RunResult(status, reason, state.t, state.cycle, summary, out)
+    # the final restart file and the summary are written with the stop handler still on:
+    # a Ctrl-C while they are written is kept as a request (RunResult.stop_requested)
+    with _Stop() as stop:
+        with th.using(n_threads), watch:
+            try:
+                with progress:
+                    progress.attach(outputs.logger)
+                    if resume is None:
+                        _start(model, plan, state, outputs)
+                    else:
+                        _resume(model, plan, state, outputs, resume, end_time, extra)
+                    if watch.compiled:
+                        progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
+                    progress.begin(state.t)
+                    _loop(model, plan, state, outputs, progress, stop, end_time, dumps,
+                          extra)
+            except Termination as term:
+                status, reason, where = term.status, term.reason, term.where
+            except KeyboardInterrupt:
+                complete = False
+                status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
+        extra["compile_seconds"] = round(watch.seconds, 3)
+        if (status != NORMAL or dumps.at_end) and state.cycle > 0:
+            _final_dump(model, state, outputs, extra, complete, dumps)
+        wall = time.perf_counter() - wall0
+        extra["wall_seconds_total"] = round(_wall_total(extra), 3)
+        summary = outputs.finish(state, status, reason, where, wall,
+                                 {k: v for k, v in extra.items() if not k.startswith("_")})
+        requested = stop.requested
+    return RunResult(status, reason, state.t, state.cycle, summary, out, requested)
 
 
 def _step_setter(state: State) -> str:
@@ -247,8 +255,8 @@ def _resume(model, plan, state: State, outputs: RunOutputs, resume: tuple,  # no
             end_time: float, extra: dict) -> None:
     path, header, payload = resume
     restore(state, payload["state"])
-    prior = payload.get("restart_files", [])
-    extra["restart_files"] = list(prior)
+    prior = payload.get("restart_files", [])  # those still in the folder
+    extra["restart_files"] = [f for f in prior if (outputs.out / f["file"]).is_file()]
     extra["resumed_from"] = {"file": path.name, "time_ms": header["time_ms"],
                              "cycle": header["cycle"]}
     extra["resumed"] = list(payload.get("resumed", [])) + [extra["resumed_from"]]
@@ -312,15 +320,17 @@ def _dump(model, state: State, outputs: RunOutputs, extra: dict,  # noqa: ANN001
     except TypeError as exc:  # a runtime that cannot save its state
         outputs.log(f"no restart file written: {exc}", logging.WARNING)
         return
-    files = [*extra["restart_files"], {"file": path.name, "time_ms": state.t,
-                                       "cycle": state.cycle}]
+    kept = dumps.kept_after(outputs.out, path.name)
+    files = [f for f in [*extra["restart_files"], {"file": path.name, "time_ms": state.t,
+                                                   "cycle": state.cycle}]
+             if kept is None or f["file"] in kept]
     payload = {"state": snap, "outputs": outputs.position(), "restart_files": files,
                "resumed": list(extra.get("resumed", [])),
                "wall_seconds": _wall_total(extra)}
     rs.write_dump(path, model, payload, state.t, state.cycle)
     dumps.written()
     gone = set(dumps.prune(outputs.out))
-    extra["restart_files"] = [f for f in files if f["file"] not in gone]
+    extra["restart_files"] = files
     outputs.log(f"restart file {path.name} written at t={state.t:.6g} ms, cycle {state.cycle}"
                 + (f" ({', '.join(sorted(gone))} deleted)" if gone else ""))
 

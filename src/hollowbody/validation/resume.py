@@ -8,7 +8,9 @@ For one run folder ``<case>/<speed>ms/<tissue>/``, :func:`resume_action` says
 what a resumed validation does with it:
 
 * **keep**: it ended normally at (or past) the end time asked for, or with an
-  error (running it again would end the same way): it is read and rated again;
+  error (running it again would end the same way), or its restart file is at or
+  past the end time asked for (a shorter run is not made from a longer one): it
+  is read and rated again;
 * **resume**: it was stopped (or killed) before its end time, or ended normally
   earlier than a later ``--end-time`` asks for, and has a restart file: it
   continues from the newest one, with the deck and set-up already in the folder;
@@ -71,6 +73,9 @@ def resume_action(folder: Path, end_time: float | None = None) -> tuple[str, str
         if head.get("version") != __version__ or head.get("format") != rs.FORMAT:
             return START, (f"its restart file {dumps[-1].name} was written by hollowbody "
                            f"{head.get('version')}, this is {__version__}: run from the start")
+        if head["time_ms"] >= target * (1.0 - _TOL):
+            return KEEP, (f"its restart file {dumps[-1].name} is at t={head['time_ms']:.6g} ms, "
+                          f"at or past the end time asked for ({target:g} ms): kept as it is")
         what = "ended normally" if status == NORMAL else "stopped"
         at = f" at t={reached:.6g} ms" if reached is not None else ""
         return RESUME, (f"{what}{at}: resumed from {dumps[-1].name} (t={head['time_ms']:.6g} "

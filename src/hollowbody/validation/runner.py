@@ -174,7 +174,7 @@ def _execute(rec: RunRecord, s: Setup, deck: Path, *, restart: bool, quiet: bool
                        restart="newest" if restart else None,
                        dump_minutes=dump_minutes, keep_dumps=1 if dump_minutes > 0 else 0,
                        dump_at_end=dump_minutes > 0)
-        interrupted = res.status == INTERRUPT
+        interrupted = res.status == INTERRUPT or res.stop_requested is not None
     else:
         rec.folder = _run_on_engine(s, deck, rec.folder / engine, engine, np_, threads,
                                     engine_path, quiet)
@@ -227,6 +227,8 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
                 rec.status, rec.reason = "failed", str(err)
             return rec
         log(f"{case.name} {speed:g} m/s {label}: {why}")
+        # started again: an earlier summary must not pass for this run's if it is stopped
+        (folder / "summary.json").unlink(missing_ok=True)
     log(f"{case.name} {speed:g} m/s {label}: building the set-up")
     t0 = time.perf_counter()
     s = build_setup(case, speed, tissue, mesh, end_time, model, landmarks, landmarks_path)

@@ -51,6 +51,8 @@ def _folder(tmp_path, summary=None, dump=None, end=40.0):
     ({"status": "user interrupt", "end_time_ms": 17.3}, 17.3, None, RESUME, "stopped"),
     (None, 9.0, None, RESUME, "resumed from d3dump01 (t=9 ms) to 40 ms"),  # killed
     ({"status": "user interrupt", "end_time_ms": 17.3}, None, None, START, "from the start"),
+    ({"status": "user interrupt", "end_time_ms": 35.0}, 35.0, 30.0, KEEP,
+     "at or past the end time asked for (30 ms)"),
     ({"status": "user interrupt", "end_time_ms": 17.3}, -17.3, None, START,
      "written by hollowbody 0.0.1"),
 ])
@@ -92,8 +94,12 @@ def _rows(folder, name="rcforc.csv"):
 def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
     """Coarsest pedestrian, thorax 4.4 m/s, solid: stopped at cycle 400 of 1,293."""
     out = tmp_path / "val"
-    argv = ["validate", "thorax", "--speed", "4.4", "--tissue", "solid", "--mesh", "50",
-            "--end-time", "2.5", "--threads", "1", "--out", str(out)]
+
+    def command(end: str) -> list[str]:
+        return ["validate", "thorax", "--speed", "4.4", "--tissue", "solid", "--mesh", "50",
+                "--end-time", end, "--threads", "1", "--out", str(out)]
+
+    argv = command("2.5")
     original = explicit.step
 
     def step(model, plan, state, dt):
@@ -125,7 +131,7 @@ def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
 
     # extended from the restart file of its end
     capsys.readouterr()
-    main([*argv[:-4], "--end-time", "3", "--out", str(out), "--resume"])
+    main([*command("3"), "--resume"])
     assert "ended normally at t=2.5 ms: resumed from d3dump02" in capsys.readouterr().out
     s = json.loads((run / "summary.json").read_text())
     assert s["end_time_ms"] == pytest.approx(3.0) and len(s["resumed"]) == 2
@@ -134,6 +140,8 @@ def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
     assert np.all(np.diff(t2) > 0.0) and np.array_equal(t2[:t.size], t)
 
     # nothing left to do: kept, rated and reported again
-    main([*argv[:-4], "--end-time", "3", "--out", str(out), "--resume"])
+    assert [f["file"] for f in s["restart_files"]] == ["d3dump03"]
+    assert [p.name for p in rs.dump_files(run)] == ["d3dump03"]
+    main([*command("3"), "--resume"])
     assert "ended normally at t=3 ms: kept" in capsys.readouterr().out
     assert json.loads((run / "summary.json").read_text()) == s

@@ -23,7 +23,7 @@ from hollowbody.build import build_model
 from hollowbody.cli.main import main as cli_main
 from hollowbody.io.keyword.writer import write_deck
 from hollowbody.solver.dump_policy import DumpPolicy
-from hollowbody.solver.restart import dump_files, read_header
+from hollowbody.solver.restart import dump_files, read_dump, read_header
 
 pytestmark = pytest.mark.usefixtures("one_thread")
 
@@ -96,11 +96,14 @@ def test_dump_at_normal_end_continues_to_a_later_end_time(tmp_path, reference):
     assert len(files) == 1
     head = read_header(files[0])
     assert head["time_ms"] == pytest.approx(0.75, rel=1e-12) and head["cycle"] == first.cycles
+    before = read_dump(files[0], build_model(_deck()))[1]["wall_seconds"]
+    assert 0.0 < before <= first.summary["wall_seconds_total"]
     second = _run(tmp_path, end_time=1.5, restart="newest")
     assert second.status == "normal termination"
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["resumed_from"]["time_ms"] == pytest.approx(0.75, rel=1e-12)
-    assert s["wall_seconds_total"] >= s["wall_seconds"]
+    # the first process's wall time up to its restart file is carried over
+    assert s["wall_seconds_total"] >= before + s["wall_seconds"] - 1e-3
     g, r = _glstat(tmp_path), _glstat(ref_out)
     t = g["time"]
     assert np.all(np.diff(t) > 0.0)  # no row written twice, none out of order
@@ -113,6 +116,16 @@ def test_dump_at_normal_end_continues_to_a_later_end_time(tmp_path, reference):
         rate = np.max(np.abs(np.diff(r[name]) / np.diff(r["time"])))
         assert np.max(np.abs(a - r[name])) <= rate * dt, name
     assert abs(second.cycles - ref.cycles) <= 1
+
+
+def test_kept_files_only_are_listed_after_a_resume(tmp_path):
+    _run(tmp_path, end_time=0.5, dump_at_end=True, keep_dumps=1)
+    res = _run(tmp_path, end_time=1.0, restart="newest", dump_at_end=True, keep_dumps=1)
+    names = [p.name for p in dump_files(tmp_path)]
+    assert names == ["d3dump02"]
+    assert [f["file"] for f in res.summary["restart_files"]] == names
+    res = _run(tmp_path, end_time=1.5, restart="newest", dump_at_end=True, keep_dumps=1)
+    assert [f["file"] for f in res.summary["restart_files"]] == ["d3dump03"]
 
 
 def test_dump_policy_checks_its_numbers():
@@ -131,3 +144,28 @@ def test_bad_dump_options_are_one_line_and_exit_2(tmp_path, capsys, flag):
     assert code == 2
     assert len(err.splitlines()) == 1 and "must be >= 0" in err, err
     assert not out.exists()
+
+
+def test_a_stop_in_the_last_cycle_ends_normally_and_is_reported(tmp_path, monkeypatch,
+                                                                reference):
+    """Ctrl-C during the last cycle: the run ends as it would have (normal, its restart
+    file at the end written), and the caller learns that a stop was asked for."""
+    import signal
+
+    from hollowbody.solver import explicit
+
+    _, ref = reference
+    original = explicit.step
+
+    def step(model, plan, state, dt):
+        original(model, plan, state, dt)
+        if state.cycle == ref.cycles:
+            signal.raise_signal(signal.SIGINT)
+
+    monkeypatch.setattr(explicit, "step", step)
+    res = _run(tmp_path, dump_at_end=True)
+    assert res.status == "normal termination" and res.cycles == ref.cycles
+    assert res.stop_requested == "Ctrl-C"
+    assert len(dump_files(tmp_path)) == 1
+    monkeypatch.undo()
+    assert _run(tmp_path / "again").stop_requested is None
