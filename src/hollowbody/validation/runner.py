@@ -212,8 +212,12 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     if resume and engine == "hollowbody":
         action, why = resume_action(folder, end_time)
         if action in (KEEP, RESUME):
-            s = update_end_time(folder, end_time) if action == RESUME else \
-                Setup.from_json(json.loads((folder / "setup.json").read_text()))
+            kept = Setup.from_json(json.loads((folder / "setup.json").read_text()))
+            if model is None and kept.mesh is not None and abs(kept.mesh - mesh) > 1e-9:
+                raise UserInputError(f"--mesh {mesh:g} differs from the run in {folder} "
+                                     f"({kept.mesh:g} mm): resume with --mesh {kept.mesh:g}, "
+                                     "or use another --out")
+            s = update_end_time(folder, end_time) if action == RESUME else kept
             rec.setup = s.to_json()
             log(f"{case.name} {speed:g} m/s {label}: {why}")
             if action == KEEP:
@@ -232,6 +236,8 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     log(f"{case.name} {speed:g} m/s {label}: building the set-up")
     t0 = time.perf_counter()
     s = build_setup(case, speed, tissue, mesh, end_time, model, landmarks, landmarks_path)
+    if model is None:
+        s.mesh = float(mesh)  # recorded in setup.json: a resume checks it
     deck = write_setup(s, folder)
     rec.setup_seconds = time.perf_counter() - t0
     rec.setup = s.to_json()

@@ -59,6 +59,9 @@ class Setup:
     notes : list of str
         What the set-up did that a reader should know (deviations from the
         test, parts left out of the contact, masses moved).
+    mesh : float or None
+        The pedestrian's soft-tissue element size [mm] (None: a user's model);
+        ``--resume`` refuses to continue these runs with another one.
     """
 
     case: str
@@ -78,6 +81,7 @@ class Setup:
     load_a: float | None = None
     load_b: float | None = None
     notes: list[str] = field(default_factory=list)
+    mesh: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         """Everything but the deck, as plain JSON values."""

@@ -117,6 +117,15 @@ def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
     assert [p.name for p in rs.dump_files(run)] == ["d3dump01"]
     assert json.loads((out / "report.json").read_text())[0]["status"] == "user interrupt"
     monkeypatch.undo()
+    assert json.loads((run / "setup.json").read_text())["mesh"] == 50.0
+
+    # another mesh than the runs in the folder: refused, nothing touched
+    capsys.readouterr()
+    other = [*argv, "--resume"]
+    other[other.index("--mesh") + 1] = "40"
+    assert main(other) == 2
+    assert "--mesh 40 differs from the run in" in capsys.readouterr().err
+    assert json.loads((run / "summary.json").read_text()) == first
 
     # resumed: ends normally at 2.5 ms; one restart file kept (the one of its end)
     code = main([*argv, "--resume"])
