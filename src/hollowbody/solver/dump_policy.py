@@ -68,12 +68,14 @@ class DumpPolicy:
         return set(names[-self.keep:])
 
     def prune(self, folder: Path) -> list[str]:
-        """Delete the older restart files of ``folder`` beyond the newest ``keep``;
-        the names deleted."""
-        if self.keep <= 0:
+        """Delete the restart files of ``folder`` that :meth:`kept_after` its newest
+        does not keep; the names deleted."""
+        files = rs.dump_files(folder)
+        kept = self.kept_after(folder, files[-1].name) if files else None
+        if kept is None:
             return []
         gone = []
-        for p in rs.dump_files(folder)[:-self.keep]:
+        for p in (f for f in files if f.name not in kept):
             try:
                 p.unlink()
             except OSError:

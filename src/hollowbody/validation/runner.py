@@ -145,6 +145,19 @@ def _read_results(rec: RunRecord, s: Setup) -> None:
         rec.peak_force, rec.peak_time = float(f[k]), float(t[k])
 
 
+def load_setup(folder: Path) -> Setup:
+    """The set-up record (``setup.json``) of a run folder."""
+    return Setup.from_json(json.loads((Path(folder) / "setup.json").read_text()))
+
+
+def _read_back(rec: RunRecord, s: Setup) -> None:
+    """Fill ``rec`` from what its folder holds: the summary and, when the run wrote
+    any, its signals."""
+    _read_summary(rec)
+    if (rec.folder / "rcforc.csv").is_file():
+        _read_results(rec, s)
+
+
 def _run_on_engine(s: Setup, deck: Path, work: Path, engine: str, np_: int,
                    threads: int | str | None, engine_path: str | None, quiet: bool) -> Path:
     """Run ``deck`` on an external engine in ``work``; the folder of its results."""
@@ -212,7 +225,7 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     if resume and engine == "hollowbody":
         action, why = resume_action(folder, end_time)
         if action in (KEEP, RESUME):
-            kept = Setup.from_json(json.loads((folder / "setup.json").read_text()))
+            kept = load_setup(folder)
             if model is None and kept.mesh is not None and abs(kept.mesh - mesh) > 1e-9:
                 raise UserInputError(f"--mesh {mesh:g} differs from the run in {folder} "
                                      f"({kept.mesh:g} mm): resume with --mesh {kept.mesh:g}, "
@@ -221,9 +234,7 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
             rec.setup = s.to_json()
             log(f"{case.name} {speed:g} m/s {label}: {why}")
             if action == KEEP:
-                _read_summary(rec)
-                if (folder / "rcforc.csv").is_file():
-                    _read_results(rec, s)
+                _read_back(rec, s)
                 return rec
             try:
                 _execute(rec, s, folder / "deck.k", restart=True, **opts)
@@ -295,11 +306,9 @@ def run_case(case: Case, speeds: tuple[float, ...], tissues: tuple[str, ...], ou
                 folder = out / case.name / f"{speed:g}ms" / label
                 stopped = RunRecord(case.name, speed, label, folder)
                 if (folder / "setup.json").is_file():
-                    s = Setup.from_json(json.loads((folder / "setup.json").read_text()))
+                    s = load_setup(folder)
                     stopped.setup = s.to_json()
-                    _read_summary(stopped)
-                    if (folder / "rcforc.csv").is_file():
-                        _read_results(stopped, s)
+                    _read_back(stopped, s)
                 if stopped.status == "not run":
                     stopped.status, stopped.reason = "interrupted", "stopped by the user"
                 records.append(stopped)
@@ -326,9 +335,7 @@ def collect_records(out: Path, corridor: Corridor | None = None) -> list[RunReco
             if (folder / engine / "summary.json").is_file():
                 folder = folder / engine
         rec = RunRecord(s.case, s.speed, s.tissue, folder, setup=d)
-        _read_summary(rec)
-        if (folder / "rcforc.csv").is_file():
-            _read_results(rec, s)
+        _read_back(rec, s)
         records.append(rec)
     records.sort(key=lambda r: (ORDER.index(r.case), r.speed, r.tissue != "solid"))
     rate_records(records, corridor)
