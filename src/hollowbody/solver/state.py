@@ -39,7 +39,8 @@ class State:
 
     t: ms; cycle: completed cycles; dt: the last step taken (ms); dt_next: the
     next step, TSSFAC * smallest critical step (ms); dt0: the first step;
-    dt_min: the smallest step taken; dtmin_abs: DTMIN x dt0 (ms, 0 = off);
+    dt_min: the smallest stable step taken (a last step cut short to land on the
+    end time is not counted); dtmin_abs: DTMIN x dt0 (ms, 0 = off);
     dt_crit_elem: (element id, part id) whose critical step is the smallest;
     dt_contact: id of the contact whose kinematic limit set dt_next below that
     element's TSSFAC x step (0: none; :mod:`hollowbody.contact.kinematic_step`); ext_work: J work of

@@ -76,7 +76,6 @@ def step(model, plan, state, dt: float) -> None:  # noqa: ANN001 - Model, Assemb
     advance(plan, state, dt, dt_avg)
     state.t += dt
     state.cycle += 1
-    state.dt_min = min(state.dt_min, dt)
     forces(model, plan, state, dt)
 
 

@@ -118,6 +118,23 @@ def test_dump_at_normal_end_continues_to_a_later_end_time(tmp_path, reference):
     assert abs(second.cycles - ref.cycles) <= 1
 
 
+def test_a_last_step_cut_to_the_end_time_is_not_the_smallest_step(tmp_path, reference):
+    """The step cut short to land on the end time is not a stability step: the
+    run's dt_min (and so its verdict's time-step drop) must not count it. Continued
+    from its end dump by a millionth of a step, the run takes one step of that
+    length; its dt_min stays the smallest stable step of the run (before: that
+    millionth, and a time-step warning on a sound run)."""
+    first = _run(tmp_path, end_time=0.75, dump_at_end=True)
+    stable = first.summary["dt_min_ms"]
+    assert 0.3 * first.summary["dt_initial_ms"] < stable <= first.summary["dt_initial_ms"]
+    tiny = 1e-6 * stable
+    second = _run(tmp_path, end_time=0.75 + tiny, restart="newest")
+    assert second.status == "normal termination" and second.cycles == first.cycles + 1
+    assert second.summary["end_time_ms"] == pytest.approx(0.75 + tiny, rel=1e-15)
+    assert second.summary["dt_min_ms"] == stable
+    assert second.summary["quality"] == "ok", second.summary["quality_reasons"]
+
+
 def test_kept_files_only_are_listed_after_a_resume(tmp_path):
     _run(tmp_path, end_time=0.5, dump_at_end=True, keep_dumps=1)
     res = _run(tmp_path, end_time=1.0, restart="newest", dump_at_end=True, keep_dumps=1)
