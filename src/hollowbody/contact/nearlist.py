@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit, prange
 
 from hollowbody.contact.bucket import segment_box
@@ -48,8 +49,10 @@ def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
 
 
 @njit(cache=True)
-def _near_rows(i0, i1, x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, fill):
-    """Near pairs of rows i0 <= i < i1 (a listed pair whose box holds the node).
+def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp, fill):
+    """Near pairs of rows i0 <= i < i1 (a listed pair whose box holds the node, and
+    the node's current contact segment oseg[i]: it may hold the node deeper than
+    any box reaches).
 
     fill 0: count into nptr[i + 1]; 1: write into ncand from nptr[i] (nptr
     already cumulative); 2 (serial, one sweep): nptr[i + 1] = nptr[i] + count
@@ -62,10 +65,11 @@ def _near_rows(i0, i1, x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, fi
         py = x[nd, 1]
         pz = x[nd, 2]
         n = nptr[i] if fill != 0 else 0
+        held = oseg[i]
         for q in range(ptr[i], ptr[i + 1]):
             s = cand[q]
-            if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
-                    and lo[s, 2] <= pz <= hi[s, 2]):
+            if s == held or (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
+                             and lo[s, 2] <= pz <= hi[s, 2]):
                 if fill != 0:
                     ncand[n] = s
                     mark[s] = stamp
@@ -86,14 +90,16 @@ def _marked(mark, stamp, nsact):
 
 
 @njit(cache=True)
-def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark, stamp,
+def near_filter(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand, mark, stamp,
                 nsact):
     """Near lists from the far lists at the current coordinates.
 
     x (L, 3) mm; nodes (ns,) int32 rows of x; seg (S, 4) int32 rows of x;
     grow (S,) mm capture distance + near margin; ptr (ns + 1,) int64 / cand
     int32: the far lists; sact (k,) int32 the segments in them (their boxes
-    are recomputed into lo / hi (S, 3) mm, other rows untouched).
+    are recomputed into lo / hi (S, 3) mm, other rows untouched); oseg (ns,)
+    int32 each node's current contact segment (-1: none), kept in its near list
+    (the far lists hold it: :func:`keep_current`).
     Outputs: nptr (ns + 1,) int64 and ncand (>= ptr[-1],) int32 the near
     lists (a subset of each far list, same order); nsact (S,) int32 its first
     m entries the segments in the near lists, ascending.
@@ -102,13 +108,14 @@ def near_filter(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
     """
     _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
     nptr[0] = 0
-    _near_rows(0, nodes.shape[0], x, nodes, ptr, cand, lo, hi, nptr, ncand, mark, stamp, 2)
+    _near_rows(0, nodes.shape[0], x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp,
+               2)
     return _marked(mark, stamp, nsact)
 
 
 @njit(cache=True, parallel=True)
-def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, ncand, mark,
-                         stamp, nsact):
+def near_filter_parallel(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
+                         mark, stamp, nsact):
     """Threaded :func:`near_filter` (same lists): count, offsets, write."""
     ns = nodes.shape[0]
     nk = sact.shape[0]
@@ -116,14 +123,14 @@ def near_filter_parallel(x, nodes, seg, grow, ptr, cand, sact, lo, hi, nptr, nca
         _boxes_of(c * _CHUNK, min(nk, (c + 1) * _CHUNK), x, seg, grow, sact, lo, hi)
     nch = (ns + _CHUNK - 1) // _CHUNK
     for c in prange(nch):
-        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
-                   ncand, mark, stamp, 0)
+        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, oseg, lo, hi,
+                   nptr, ncand, mark, stamp, 0)
     nptr[0] = 0
     for i in range(ns):
         nptr[i + 1] += nptr[i]
     for c in prange(nch):
-        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, lo, hi, nptr,
-                   ncand, mark, stamp, 1)
+        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, oseg, lo, hi,
+                   nptr, ncand, mark, stamp, 1)
     return _marked(mark, stamp, nsact)
 
 
@@ -183,3 +190,59 @@ def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, war
         start = end
     ptr[ns] = w
     return w
+
+
+@njit(cache=True)
+def _missing_current(ptr, cand, oseg, alive):
+    """How many rows i have a live current segment oseg[i] not in their list."""
+    n = 0
+    for i in range(oseg.shape[0]):
+        s = oseg[i]
+        if s < 0 or not alive[s]:
+            continue
+        found = False
+        for q in range(ptr[i], ptr[i + 1]):
+            if cand[q] == s:
+                found = True
+                break
+        if not found:
+            n += 1
+    return n
+
+
+@njit(cache=True)
+def _with_current(ptr, cand, oseg, alive, nptr, ncand):
+    """Copy the lists into nptr / ncand, appending each missing live oseg[i]."""
+    w = 0
+    for i in range(oseg.shape[0]):
+        nptr[i] = w
+        s = oseg[i]
+        found = s < 0 or not alive[s]
+        for q in range(ptr[i], ptr[i + 1]):
+            ncand[w] = cand[q]
+            w += 1
+            if cand[q] == s:
+                found = True
+        if not found:
+            ncand[w] = s
+            w += 1
+    nptr[oseg.shape[0]] = w
+
+
+def keep_current(ptr: np.ndarray, cand: np.ndarray, oseg: np.ndarray, alive: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Far lists (CSR ptr (ns + 1,) int64, cand int32) that hold every node's
+    current contact segment oseg (ns,) int32 (-1: none) when it is ``alive``
+    (S,) bool: the detection accepts the segment that held a node last cycle down
+    to the release depth plus the penetration it was found with, which can be
+    deeper than the box of any sort or filter reaches. Without it the pair was
+    dropped whenever the lists were rebuilt while the node was that deep (a
+    held contact let go, and a run that depended on when the lists were
+    rebuilt). Returns the same arrays when nothing is missing."""
+    n = _missing_current(ptr, cand, oseg, alive)
+    if n == 0:
+        return ptr, cand
+    nptr = np.empty_like(ptr)
+    ncand = np.empty(cand.shape[0] + n, dtype=cand.dtype)
+    _with_current(ptr, cand, oseg, alive, nptr, ncand)
+    return nptr, ncand

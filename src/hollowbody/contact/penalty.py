@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit, prange
 
 from hollowbody.contact.detect import CHUNK
@@ -320,28 +321,58 @@ def scatter_pass(act, nodes, seg, oseg, ow, of, f, fsum):
 
 @njit(cache=True)
 def gather(x, v, nodes, xl, vl, xsort, xnear):
-    """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return the largest
-    squared displacements (mm^2) since the last sort (positions xsort (L, 3))
-    and since the last near-list filter (xnear (L, 3))."""
+    """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return squared
+    bounds (mm^2) on how far the nodes moved *relative to one common
+    translation* since the last sort (positions xsort (L, 3)) and since the last
+    near-list filter (xnear (L, 3)).
+
+    Two nodes i, j approach by at most |u_i - u_j| <= |u_i - c| + |u_j - c| for any
+    translation c, so lists made with a margin m stay complete while every node is
+    within m/2 of c. Each bound is the smaller of max |u| (c = 0) and the half
+    diagonal of the displacements' box (c its centre, which every node is within):
+    walls crushed under an impactor move from 0 (base) to the impactor's travel
+    in one direction, half of what max |u| says.
+    """
     m = 0.0
     mn = 0.0
+    a0 = a1 = a2 = np.inf  # displacement box since the sort
+    b0 = b1 = b2 = -np.inf
+    c0 = c1 = c2 = np.inf  # and since the filter
+    d0 = d1 = d2 = -np.inf
     for i in range(nodes.shape[0]):
         g = nodes[i]
-        dd = 0.0
-        dn = 0.0
         for k in range(3):
-            xv = x[g, k]
-            xl[i, k] = xv
+            xl[i, k] = x[g, k]
             vl[i, k] = v[g, k]
-            e = xv - xsort[i, k]
-            dd += e * e
-            e = xv - xnear[i, k]
-            dn += e * e
+        e0 = xl[i, 0] - xsort[i, 0]
+        e1 = xl[i, 1] - xsort[i, 1]
+        e2 = xl[i, 2] - xsort[i, 2]
+        dd = e0 * e0 + e1 * e1 + e2 * e2
         if dd > m:
             m = dd
+        a0 = min(a0, e0)
+        a1 = min(a1, e1)
+        a2 = min(a2, e2)
+        b0 = max(b0, e0)
+        b1 = max(b1, e1)
+        b2 = max(b2, e2)
+        e0 = xl[i, 0] - xnear[i, 0]
+        e1 = xl[i, 1] - xnear[i, 1]
+        e2 = xl[i, 2] - xnear[i, 2]
+        dn = e0 * e0 + e1 * e1 + e2 * e2
         if dn > mn:
             mn = dn
-    return m, mn
+        c0 = min(c0, e0)
+        c1 = min(c1, e1)
+        c2 = min(c2, e2)
+        d0 = max(d0, e0)
+        d1 = max(d1, e1)
+        d2 = max(d2, e2)
+    if nodes.shape[0] == 0:
+        return 0.0, 0.0
+    hs = 0.25 * ((b0 - a0) ** 2 + (b1 - a1) ** 2 + (b2 - a2) ** 2)
+    hn = 0.25 * ((d0 - c0) ** 2 + (d1 - c1) ** 2 + (d2 - c2) ** 2)
+    return min(m, hs), min(mn, hn)
 
 
 @njit(cache=True)

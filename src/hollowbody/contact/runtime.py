@@ -58,7 +58,12 @@ from hollowbody.contact.frames import (
 )
 from hollowbody.contact.kinematic_step import max_speed2, passes_step, work_arrays
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
-from hollowbody.contact.nearlist import distance_cut, near_filter, near_filter_parallel
+from hollowbody.contact.nearlist import (
+    distance_cut,
+    keep_current,
+    near_filter,
+    near_filter_parallel,
+)
 from hollowbody.contact.penalty import (
     active_rows,
     count_through,
@@ -94,7 +99,8 @@ PENMAX = 0.4
 #: OMP_WAIT_POLICY=passive there). Hollow block at 70 km/h, 2 threads, idle
 #: machine: contact 16.2 s with 16384 (all serial), 12.2 s with 4096.
 PARALLEL_MIN_NODES = 4096
-#: Re-sort when a node has moved this fraction of the bucket margin.
+#: Re-sort when the nodes have moved this fraction of the bucket margin relative to
+#: one common translation (:func:`hollowbody.contact.penalty.gather`).
 _RESORT_FRACTION = 0.5
 #: Largest bucket-sort margin and the near-list margin, as fractions of the
 #: median segment size (see ContactRuntime._sort and hollowbody.contact.nearlist)
@@ -487,6 +493,7 @@ class ContactRuntime:
             p.cand = p.cand[:m]
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
+            p.ptr, p.cand = keep_current(p.ptr, p.cand, p.oseg, p.seg_alive)
         self._xsort[:] = self._xl
         self._last_sort = cycle
         self.n_sorts += 1
@@ -508,8 +515,8 @@ class ContactRuntime:
                 continue
             par = self._threaded(p)
             m = (near_filter_parallel if par else near_filter)(
-                self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.sact,
-                p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
+                self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.oseg,
+                p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
             p.fact = p._nsact[:m]
             p.act = p._act_buf[:active_rows(p.nptr, p.oseg, p._act_buf)]
             p.othru[:] = -1  # rows left out are not rewritten (events already reported)

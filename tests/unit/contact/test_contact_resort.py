@@ -1,8 +1,9 @@
 """When ContactRuntime rebuilds its lists, and that its lists never change a force.
 
-The far lists (bucket sort) are rebuilt when a node of the contact has moved
-half the far margin, the near lists (nearlist.near_filter) when it has moved
-half the near margin, neither when elements erode. Every check here compares
+The far lists (bucket sort) are rebuilt when the contact's nodes have moved
+half the far margin relative to one common translation, the near lists
+(nearlist.near_filter) when they have moved half the near margin, neither when
+elements erode. Every check here compares
 with a reference that lists every segment for every node (``AllPairs``): the
 forces must be the same to the last bit (the kernels' results do not depend on
 which or in what order candidates are listed, as long as no pair that can be
@@ -15,6 +16,7 @@ import numpy as np
 import pytest
 
 from hollowbody.contact import ContactRuntime
+from hollowbody.contact.penalty import gather
 from hollowbody.contact.runtime import _drop_dead
 from hollowbody.mesh import block_mesh, plate_mesh
 from hollowbody.model.model import ContactDef
@@ -119,6 +121,54 @@ def test_slow_approach_between_near_list_filters():
     a, first = _approach(model, nb, -5.0, 60)
     assert first is not None
     assert a.n_sorts <= 3 and a.n_filters >= 3 * a.n_sorts
+
+
+def test_displacement_bound_holds_every_pair():
+    """gather's bound D (relative to one translation) must cover every pair of
+    nodes, |u_i - u_j| <= 2 D, for any displacement field; it is never larger
+    than max |u| (the bound with no translation) and is half of it when the
+    nodes spread along one direction from rest (a crushed pile under an
+    impactor)."""
+    rng = np.random.default_rng(3)
+    for case in range(40):
+        n = int(rng.integers(1, 60))
+        x0 = rng.normal(0.0, 10.0, (n, 3))
+        u = rng.normal(0.0, 1.0, (n, 3)) * rng.uniform(0.0, 3.0, 3)
+        if case % 2:
+            u += rng.normal(0.0, 20.0, 3)  # a common translation on top
+        x = x0 + u
+        u = x - x0  # as gather sees it (to the last bit)
+        xl, vl = np.zeros_like(x), np.zeros_like(x)
+        d2, dn2 = gather(x, x, np.arange(n, dtype=np.int32), xl, vl, x0, x0)
+        assert d2 == dn2
+        pair = np.max(np.linalg.norm(u[:, None, :] - u[None, :, :], axis=2))
+        assert pair <= 2.0 * np.sqrt(d2) * (1.0 + 1e-12)
+        assert d2 <= np.max(np.sum(u * u, axis=1))
+    u = np.zeros((11, 3))
+    u[:, 2] = -np.linspace(0.0, 4.0, 11)  # base at rest, top moved 4 mm down
+    d2, _ = gather(u, u, np.arange(11, dtype=np.int32), np.zeros_like(u), np.zeros_like(u),
+                   np.zeros_like(u), np.zeros_like(u))
+    assert d2 == pytest.approx(4.0)  # (4 / 2)^2: half of max |u| = 4 mm
+
+
+def test_a_common_translation_does_not_re_sort():
+    """Block and plate flying together at 1 mm per cycle sideways while the block
+    closes on the plate at 0.02 mm per cycle: the lists stay complete (forces equal
+    the all-pairs search every cycle) and are rebuilt by the relative motion only:
+    the interval sort, not one every few cycles as the 1 mm per cycle would need."""
+    model, nb = _block_over_plate(0.6, sort_interval=50)
+    a, b = _pair(model, fs=0.2, fd=0.2)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:, 0] = 100.0
+    v[:nb, 2] = -2.0
+    active = 0
+    for cycle in range(100):
+        _step_both(a, b, x, v, 0.01, cycle)
+        active += a.n_active
+        x += 0.01 * v
+    assert active > 0
+    assert a.n_sorts <= 3  # the first sort and the interval sorts (cycles 0, 50)
 
 
 @pytest.mark.parametrize("kind", ["surface_to_surface", "single_surface"])
