@@ -319,6 +319,14 @@ def scatter_pass(act, nodes, seg, oseg, ow, of, f, fsum):
     return n
 
 
+@njit(cache=True, inline="always")
+def _spread(e0, e1, e2, m, a0, a1, a2, b0, b1, b2):
+    """One displacement (e0, e1, e2) into the largest |e|^2 m and the box a (min) /
+    b (max) per axis; returns them updated."""
+    return (max(m, e0 * e0 + e1 * e1 + e2 * e2), min(a0, e0), min(a1, e1), min(a2, e2),
+            max(b0, e0), max(b1, e1), max(b2, e2))
+
+
 @njit(cache=True)
 def gather(x, v, nodes, xl, vl, xsort, xnear):
     """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return squared
@@ -333,43 +341,22 @@ def gather(x, v, nodes, xl, vl, xsort, xnear):
     walls crushed under an impactor move from 0 (base) to the impactor's travel
     in one direction, half of what max |u| says.
     """
-    m = 0.0
-    mn = 0.0
-    a0 = a1 = a2 = np.inf  # displacement box since the sort
-    b0 = b1 = b2 = -np.inf
-    c0 = c1 = c2 = np.inf  # and since the filter
-    d0 = d1 = d2 = -np.inf
+    if nodes.shape[0] == 0:
+        return 0.0, 0.0
+    m = mn = 0.0
+    a0 = a1 = a2 = c0 = c1 = c2 = np.inf  # boxes since the sort (a, b), the filter (c, d)
+    b0 = b1 = b2 = d0 = d1 = d2 = -np.inf
     for i in range(nodes.shape[0]):
         g = nodes[i]
         for k in range(3):
             xl[i, k] = x[g, k]
             vl[i, k] = v[g, k]
-        e0 = xl[i, 0] - xsort[i, 0]
-        e1 = xl[i, 1] - xsort[i, 1]
-        e2 = xl[i, 2] - xsort[i, 2]
-        dd = e0 * e0 + e1 * e1 + e2 * e2
-        if dd > m:
-            m = dd
-        a0 = min(a0, e0)
-        a1 = min(a1, e1)
-        a2 = min(a2, e2)
-        b0 = max(b0, e0)
-        b1 = max(b1, e1)
-        b2 = max(b2, e2)
-        e0 = xl[i, 0] - xnear[i, 0]
-        e1 = xl[i, 1] - xnear[i, 1]
-        e2 = xl[i, 2] - xnear[i, 2]
-        dn = e0 * e0 + e1 * e1 + e2 * e2
-        if dn > mn:
-            mn = dn
-        c0 = min(c0, e0)
-        c1 = min(c1, e1)
-        c2 = min(c2, e2)
-        d0 = max(d0, e0)
-        d1 = max(d1, e1)
-        d2 = max(d2, e2)
-    if nodes.shape[0] == 0:
-        return 0.0, 0.0
+        m, a0, a1, a2, b0, b1, b2 = _spread(
+            xl[i, 0] - xsort[i, 0], xl[i, 1] - xsort[i, 1], xl[i, 2] - xsort[i, 2],
+            m, a0, a1, a2, b0, b1, b2)
+        mn, c0, c1, c2, d0, d1, d2 = _spread(
+            xl[i, 0] - xnear[i, 0], xl[i, 1] - xnear[i, 1], xl[i, 2] - xnear[i, 2],
+            mn, c0, c1, c2, d0, d1, d2)
     hs = 0.25 * ((b0 - a0) ** 2 + (b1 - a1) ** 2 + (b2 - a2) ** 2)
     hn = 0.25 * ((d0 - c0) ** 2 + (d1 - c1) ** 2 + (d2 - c2) ** 2)
     return min(m, hs), min(mn, hn)
