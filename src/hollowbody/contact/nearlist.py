@@ -1,7 +1,9 @@
 """Near lists: the bucket sort's candidate lists cut down to the pairs close now.
 
 Two levels of lists, each valid (complete) while every node of the contact
-has moved less than half its margin since it was made:
+has moved less than half its margin since it was made, relative to one common
+translation (:func:`~hollowbody.contact.penalty.gather`), and each holding every
+node's current contact segment (:func:`keep_current`):
 
 * the *far* lists of :func:`~hollowbody.contact.bucket.bucket_sort`: every
   segment whose box, enlarged by capture + m_far, holds the node; rebuilt
@@ -145,9 +147,9 @@ def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, war
     cen, nrm, rad2, warp (S, ...) the segment frames at x
     (:func:`~hollowbody.contact.frames.segment_frames`); oseg (ns,) int32 the
     segment each node is in contact with (kept: it may hold the node deeper);
-    margin mm the sort's margin (every node moves less than margin / 2 until the
-    next sort); ptr (ns + 1,) int64 / cand int32 the lists, compacted in place
-    (each row keeps its order).
+    margin mm the sort's margin (every node moves less than margin / 2, relative to
+    one common translation, until the next sort); ptr (ns + 1,) int64 / cand int32
+    the lists, compacted in place (each row keeps its order).
 
     A pair is in contact only at a foot point x_p on the segment (natural
     coordinates within the tolerance) with |p - x_p| below the contact distance

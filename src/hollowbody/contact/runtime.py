@@ -538,6 +538,7 @@ class ContactRuntime:
                 removed += int(hit.sum())
                 # the lists stay complete without those segments: no re-sort
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
+                _release_dead(p)
                 self._refilter = True
         return removed
 
@@ -602,6 +603,21 @@ class ContactRuntime:
         ``dt_next``: the step the solver would take (the pairs are visited only if the
         limit can be below it; inf otherwise)."""
         return passes_step(self._kin_live, self._xl, self._vl, dt_next, self._threaded)
+
+
+def _release_dead(p: _Pass) -> None:
+    """Nodes whose contact segment was just deleted let go of it: the next detection
+    takes them as new contacts on whatever segment holds them (the stiffening starts
+    from its first gap), and no pass-through is reported against the deleted one.
+    Their side memory (``nprev``, for two-sided segments) is kept."""
+    rows = np.nonzero(p.oseg >= 0)[0]
+    rows = rows[~p.seg_alive[p.oseg[rows]]]
+    if rows.size:
+        p.oseg[rows] = -1
+        p.ogap[rows] = 0.0
+        p.odel[rows] = 0.0
+        p.oentry[rows] = 0
+        p.othru[rows] = -1
 
 
 def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray

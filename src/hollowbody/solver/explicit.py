@@ -273,9 +273,8 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
         chosen = state.dt_next  # the stable step; the last one may be cut to end_time
         dt = min(chosen, end_time - state.t) if end_time > state.t else 0.0
         try:
-            step(model, plan, state, dt)
+            step(model, plan, state, dt, chosen)
         finally:
-            state.dt_min = min(state.dt_min, chosen)
             _drain(state, outputs)
         running = state.t < end_time * (1.0 - 1e-12)
         if running and not np.isfinite(state.dt_next):

@@ -207,6 +207,40 @@ def test_random_motion_with_friction_and_erosion(parallel, kind):
             assert near <= set(p.cand[p.ptr[i]:p.ptr[i + 1]].tolist())
 
 
+def test_nodes_let_go_of_a_deleted_contact_segment():
+    """A block pressed onto a plate; the plate elements under it are deleted: every
+    node held by one of them lets go at once (no current segment that is dead, no
+    held depth, entry or pass-through state left), keeps its side memory, and the
+    next cycles report no pass-through against the deleted segments (before, in
+    the eroding hollow block at 100 km/h, all three pass-through reports were
+    against deleted wall segments)."""
+    model, nb = _block_over_plate(0.5, sort_interval=10)
+    a, _ = _pair(model, "single_surface", fs=0.2, fd=0.1)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:nb, 2] = -1.0
+    for cycle in range(60):  # 0.6 mm down: the block's bottom nodes in contact
+        a.add_forces(x, v, 0.02, cycle, np.zeros_like(x))
+        x += 0.02 * v
+    held = {k: p.oseg.copy() for k, p in enumerate(a.passes)}
+    assert sum(int((o >= 0).sum()) for o in held.values()) > 0
+    plate = model.shell_groups[0].elem_ids
+    assert a.deactivate_elements(2, plate) > 0
+    released = 0
+    for k, p in enumerate(a.passes):
+        assert np.all((p.oseg < 0) | p.seg_alive[np.maximum(p.oseg, 0)])
+        gone = (held[k] >= 0) & ~p.seg_alive[np.maximum(held[k], 0)]
+        released += int(gone.sum())
+        assert np.all(p.ogap[gone] == 0.0) and np.all(p.odel[gone] == 0.0)
+        assert np.all(p.oentry[gone] == 0) and np.all(p.othru[gone] == -1)
+        assert np.any(p.nprev[gone] != 0.0)  # the side memory stays
+    assert released > 0
+    for cycle in range(60, 80):
+        a.add_forces(x, v, 0.02, cycle, np.zeros_like(x))
+        x += 0.02 * v
+    assert a.n_pass_through == 0
+
+
 def test_node_over_a_shared_edge_takes_the_lower_segment_in_any_list_order():
     """A node exactly over the edge shared by two coplanar segments is inside
     both (within the projection tolerance) at the same distance; it is given

@@ -13,7 +13,8 @@ Case: the hollow block (30 mm cells, 4 shells per edge, stiff hardening walls
 E 133.6 / yield 1.49 / ETAN 79 MPa with IHQ 4, as calibrated at 40 + 70 km/h)
 struck at 100 km/h for 9 ms, once with the default sort interval (NSBCS 100:
 far lists rebuilt by the displacement bound) and once with NSBCS 1 (far and near
-lists rebuilt every cycle). The histories must be equal to the last bit. With
+lists rebuilt every cycle). The histories must be equal to the last bit (the
+contacts' kinematic step limit, which reads the near pairs, never binds here). With
 the current segment left to the box tests they parted at 8.29 ms (cycle 429 of
 467: the self-contact dropped held pairs 16 times over the 100 km/h run).
 """
