@@ -11,6 +11,7 @@ energy of a free fall or the strain energy of a loaded spring must balance.
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from hollowbody.errors import DeckError
 from hollowbody.model.loads import BodyLoad, NodeLoad, RigidBodyLoad
@@ -93,18 +94,32 @@ class BodyLoadTerm:
 
     def add_forces(self, state, dt: float) -> tuple[float, int, int]:  # noqa: ANN001
         g = self.acceleration(state.t)
-        nodes = self.nodes
-        m = state.node_mass[nodes]
+        mom = np.zeros(3)
+        _body_force(self.nodes, state.node_mass, state.v, g, state.f, mom)
         if dt > 0.0:
-            mom = m @ state.v[nodes] + sum(bd.mass * bd.vel for bd in self.bodies)
+            mom += sum(bd.mass * bd.vel for bd in self.bodies)
             self.external_work += dt * 0.5 * float((self.g + g) @ mom)
-        state.f[nodes] += m[:, None] * g
         self.g = g
         return np.inf, -1, -1
 
     def after_gather(self, state, bodies: list, dt: float) -> None:  # noqa: ANN001
         for bd in self.bodies:
             bd.force = bd.force + bd.mass * self.g
+
+
+@njit(cache=True)
+def _body_force(nodes, mass, v, g, f, mom):
+    """f[n] += m_n g for the nodes (N,) int64; mom (3,) += sum m_n v_n (kg mm/ms).
+
+    mass (n,) kg, v (n, 3) mm/ms, g (3,) mm/ms^2, f (n, 3) kN. One pass: the
+    gravity of a body of 70,000 nodes cost 5 ms per cycle as numpy gathers and
+    scatters."""
+    for k in range(nodes.shape[0]):
+        i = nodes[k]
+        m = mass[i]
+        for a in range(3):
+            f[i, a] += m * g[a]
+            mom[a] += m * v[i, a]
 
 
 _AX = {1: 0, 2: 1, 3: 2, 5: 0, 6: 1, 7: 2}
