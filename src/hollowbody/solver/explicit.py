@@ -272,9 +272,11 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
     while state.t < end_time * (1.0 - 1e-12):
         chosen = state.dt_next  # the stable step; the last one may be cut to end_time
         dt = min(chosen, end_time - state.t) if end_time > state.t else 0.0
+        smallest = min(state.dt_min, chosen)  # a cut step is not a stability step
         try:
-            step(model, plan, state, dt, chosen)
+            step(model, plan, state, dt)
         finally:
+            state.dt_min = smallest
             _drain(state, outputs)
         running = state.t < end_time * (1.0 - 1e-12)
         if running and not np.isfinite(state.dt_next):

@@ -69,16 +69,13 @@ def start(model, plan, state) -> None:  # noqa: ANN001 - Model, Assembly, State
     state.dtmin_abs = model.controls.dtmin * state.dt0
 
 
-def step(model, plan, state, dt: float,  # noqa: ANN001 - Model, Assembly, State
-         stable: float | None = None) -> None:
+def step(model, plan, state, dt: float) -> None:  # noqa: ANN001 - Model, Assembly, State
     """Advance ``state`` by one cycle of ``dt`` ms (t, cycle, x, v, f, histories).
-
-    ``stable``: the stable step this cycle could have taken when ``dt`` was cut
-    short to land on the end time; ``state.dt_min`` keeps the smallest stable
-    step (default: ``dt``)."""
+    ``state.dt_min`` takes ``dt`` (the run loop puts back the stable step when it
+    cut ``dt`` short to land on the end time)."""
     dt_avg = 0.5 * dt if state.cycle == 0 else 0.5 * (state.dt + dt)
     state.dt = dt
-    state.dt_min = min(state.dt_min, dt if stable is None else stable)
+    state.dt_min = min(state.dt_min, dt)
     advance(plan, state, dt, dt_avg)
     state.t += dt
     state.cycle += 1
