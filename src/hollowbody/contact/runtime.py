@@ -93,12 +93,18 @@ from hollowbody.model.model import ContactDef, Model
 #: Release depth, as a fraction of the element depth V / A behind a solid face
 #: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
 PENMAX = 0.4
-#: Passes with fewer nodes than this run serially: a pass costs ~0.1-0.2 us per
-#: node, so below this the thread wake-up is not worth it (and on a machine
-#: busier than its cores OpenMP's spinning threads make parallel far slower: set
-#: OMP_WAIT_POLICY=passive there). Hollow block at 70 km/h, 2 threads, idle
-#: machine: contact 16.2 s with 16384 (all serial), 12.2 s with 4096.
-PARALLEL_MIN_NODES = 4096
+#: Passes whose nodes plus near pairs are fewer than this run serially. A threaded
+#: kernel costs a wake-up of the waiting threads per call: ~3 us while they spin,
+#: 60-140 us with the passive wait policy that runs set (solver.threads) on the
+#: shared two-core machine of BENCHMARKS.md, and a pass costs ~16 ns per near pair.
+#: The hollow block's passes (5,209 nodes and ~35,000 near pairs at most) were
+#: slower threaded than serial there, every kernel of them (2 threads, idle
+#: machine, 100 km/h: contact 5.3-7.1 s against 4.4-4.7 s on one thread).
+PARALLEL_MIN_NODES = 65536
+#: The threaded near filter and bucket sort count each node's pairs in one sweep
+#: and write them in a second: on two threads that is the serial work again, plus
+#: the wake-ups, so they run threaded only from this many threads on.
+TWO_SWEEP_MIN_THREADS = 3
 #: Re-sort when the nodes have moved this fraction of the bucket margin relative to
 #: one common translation (:func:`hollowbody.contact.penalty.gather`).
 _RESORT_FRACTION = 0.5
@@ -244,8 +250,11 @@ class ContactRuntime:
         self.cdef = cdef
         #: release depth of solid faces / element depth (see set_penmax)
         self.penmax = PENMAX
-        #: passes with at least this many nodes use the parallel kernels
+        #: passes with at least this many nodes plus near pairs use the parallel
+        #: kernels; the count-then-write ones (near filter, bucket sort) only with at
+        #: least two_sweep_threads threads
         self.parallel_min_nodes = PARALLEL_MIN_NODES
+        self.two_sweep_threads = TWO_SWEEP_MIN_THREADS
         self.sort_interval = max(1, int(model.controls.contact_sort_interval or 100))
         n = model.n_nodes
         x0 = np.asarray(model.node_x0 if x0 is None else x0, dtype=np.float64)
@@ -485,7 +494,7 @@ class ContactRuntime:
         self._near_margin = NEAR_MARGIN * lseg
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
-                                        p.ex_ptr, p.ex_seg, self._threaded(p),
+                                        p.ex_ptr, p.ex_seg, self._threaded(p, 2),
                                         size_hint=p.n_box_pairs)
             p.n_box_pairs = p.cand.shape[0]
             m = distance_cut(self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen,
@@ -498,14 +507,14 @@ class ContactRuntime:
         self._last_sort = cycle
         self.n_sorts += 1
 
-    def _threaded(self, p: _Pass) -> bool:
+    def _threaded(self, p: _Pass, sweeps: int = 1) -> bool:
         """Use the threaded kernels for pass p: its nodes plus its near pairs (the
         work of a pass) reach parallel_min_nodes, and numba has more than one
-        thread (with one, the threaded near filter would only count and fill in
-        two sweeps). The pairs count: the hollow block's 993 impactor nodes have
-        ~26 near pairs each once the walls are crushed under the impactor."""
+        thread (at least two_sweep_threads for the kernels that count and then
+        write, ``sweeps=2``: with fewer they only repeat the serial work)."""
+        need = 2 if sweeps == 1 else max(2, self.two_sweep_threads)
         return (p.nodes.shape[0] + int(p.nptr[-1]) >= self.parallel_min_nodes
-                and get_num_threads() > 1)
+                and get_num_threads() >= need)
 
     def _filter(self) -> None:
         """Near lists of every pass from its far lists, at the current coordinates."""
@@ -513,7 +522,7 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            par = self._threaded(p)
+            par = self._threaded(p, 2)
             m = (near_filter_parallel if par else near_filter)(
                 self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.oseg,
                 p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
