@@ -31,6 +31,7 @@ from pathlib import Path
 from hollowbody.cli.run_engine import add_external_engine_arguments
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
+from hollowbody.solver.run_lock import LOCK_NAME, check_free
 
 REPORT_FILES = ("report.md", "report.html", "report.json")
 
@@ -112,6 +113,10 @@ def _prepare(out: Path, cases: list[str], overwrite: bool, model: Path | None) -
             if e.is_dir() and e.resolve() in m.parents:
                 raise UserInputError(f"--overwrite would delete {e}, which holds --model "
                                      f"{model}; move the model or choose another --out")
+    for e in earlier:  # a run still going on in one of them: delete nothing
+        if e.is_dir():
+            for lock in sorted(e.rglob(LOCK_NAME)):
+                check_free(lock.parent)
     for e in earlier:
         if e.is_dir():
             shutil.rmtree(e)

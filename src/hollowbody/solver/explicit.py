@@ -36,6 +36,7 @@ from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
 from hollowbody.solver.outputs import RunOutputs, prepare_out_dir
 from hollowbody.solver.progress import COMPILE_NOTICE, LINE_INTERVAL, CompileWatch, Progress
+from hollowbody.solver.run_lock import RunLock, check_free
 from hollowbody.solver.setup import assemble
 from hollowbody.solver.state import State, init_state, restore, snapshot
 from hollowbody.solver.step import ERROR, INTERRUPT, NORMAL, Termination, start, step
@@ -135,6 +136,7 @@ class _Stop:
 def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     """Run ``model`` (a :class:`hollowbody.model.model.Model`) to termination."""
     out = Path(options.out_dir)
+    check_free(out)  # a live run there: refused before its files are read
     resume = None
     if options.restart is not None:  # checked before anything in the folder is touched
         given = None if str(options.restart) == NEWEST else Path(options.restart)
@@ -160,70 +162,75 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         raise UserInputError(str(exc)) from None
     if options.d3plot and not d3plot_available():  # before the folder is touched
         raise UserInputError(f"d3plot output needs lasso-python: {D3PLOT_EXTRA}")
-    if resume is None:  # a restart continues the folder's run
-        prepare_out_dir(out, options.overwrite, options.inputs)
-    out.mkdir(parents=True, exist_ok=True)
-    end_time = options.end_time if options.end_time is not None else model.controls.end_time
-    if options.erode is not None:
-        plan.erode = bool(options.erode)
-    state = init_state(model, plan)
-    outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
-                         resume=resume[2]["outputs"] if resume else None,
-                         thresholds=options.quality, d3plot=options.d3plot)
-    extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model),
-                   "threads": n_threads, "_wall0": wall0, "_wall_before": 0.0}
-    if resume is None:
-        outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
-                    f"{plan.element_counts()} ; end time {end_time:g} ms; erosion "
-                    f"{'on' if plan.erode else 'off'}")
-        for line in unsupported_lines(model):
-            outputs.log(line, logging.WARNING)
-        if outputs.d3plot_note:
-            outputs.log(outputs.d3plot_note)
-        for w in caught:
-            outputs.log(str(w.message), logging.WARNING)
-        for rt in plan.elements:
-            for w in getattr(rt, "warnings", []) or []:
-                outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
-        if plan.ties is not None:  # [tied] set-up messages (hollowbody.contact.tied)
-            plan.ties.log(lambda lvl, msg: outputs.log(msg, getattr(logging, lvl.upper())))
-    outputs.log(f"numba threads: {n_threads} ({threads_why})")
-    status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
-    complete = True  # the State is that of a whole cycle (a dump of it can be resumed)
-    progress = Progress(end_time, quiet=options.quiet, label=options.label,
-                        interval=options.progress_interval, log=outputs.log)
-    watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."),
-                         seconds=setup_compile.seconds, count=setup_compile.count)
-    # the final restart file and the summary are written with the stop handler still on:
-    # a Ctrl-C while they are written is kept as a request (RunResult.stop_requested)
-    with _Stop() as stop:
-        with th.using(n_threads), watch:
-            try:
-                with progress:
-                    progress.attach(outputs.logger)
-                    if resume is None:
-                        _start(model, plan, state, outputs)
-                    else:
-                        _resume(model, plan, state, outputs, resume, end_time, extra)
-                    if watch.compiled:
-                        progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
-                    progress.begin(state.t)
-                    _loop(model, plan, state, outputs, progress, stop, end_time, dumps,
-                          extra)
-            except Termination as term:
-                status, reason, where = term.status, term.reason, term.where
-            except KeyboardInterrupt:
-                complete = False
-                status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
-        extra["compile_seconds"] = round(watch.seconds, 3)
-        if (status != NORMAL or dumps.at_end) and state.cycle > 0:
-            _final_dump(model, state, outputs, extra, complete, dumps)
-        wall = time.perf_counter() - wall0
-        extra["wall_seconds_total"] = round(_wall_total(extra), 3)
-        summary = outputs.finish(state, status, reason, where, wall,
-                                 {k: v for k, v in extra.items() if not k.startswith("_")})
-        requested = stop.requested
-    return RunResult(status, reason, state.t, state.cycle, summary, out, requested)
+    # one run at a time in a folder: taken before anything in it is written, given
+    # back after the summary (solver.run_lock)
+    with RunLock(out) as lock:
+        if resume is None:  # a restart continues the folder's run
+            prepare_out_dir(out, options.overwrite, options.inputs)
+        out.mkdir(parents=True, exist_ok=True)
+        end_time = options.end_time if options.end_time is not None else model.controls.end_time
+        if options.erode is not None:
+            plan.erode = bool(options.erode)
+        state = init_state(model, plan)
+        outputs = RunOutputs(out, model, plan, end_time, vtk=options.vtk,
+                             resume=resume[2]["outputs"] if resume else None,
+                             thresholds=options.quality, d3plot=options.d3plot)
+        extra: dict = {"restart_files": [], "unsupported_keywords": unsupported_entries(model),
+                       "threads": n_threads, "_wall0": wall0, "_wall_before": 0.0}
+        if resume is None:
+            outputs.log(f"hollowbody explicit run: {model.n_nodes} nodes, "
+                        f"{plan.element_counts()} ; end time {end_time:g} ms; erosion "
+                        f"{'on' if plan.erode else 'off'}")
+            for line in unsupported_lines(model):
+                outputs.log(line, logging.WARNING)
+            if outputs.d3plot_note:
+                outputs.log(outputs.d3plot_note)
+            for w in caught:
+                outputs.log(str(w.message), logging.WARNING)
+            for rt in plan.elements:
+                for w in getattr(rt, "warnings", []) or []:
+                    outputs.log(f"part {rt.pid}: {w}", logging.WARNING)
+            if plan.ties is not None:  # [tied] set-up messages (hollowbody.contact.tied)
+                plan.ties.log(lambda lvl, msg: outputs.log(msg, getattr(logging, lvl.upper())))
+        if lock.stale:
+            outputs.log(lock.stale, logging.WARNING)
+        outputs.log(f"numba threads: {n_threads} ({threads_why})")
+        status, reason, where = NORMAL, f"end time {end_time:g} ms reached", {}
+        complete = True  # the State is that of a whole cycle (a dump of it can be resumed)
+        progress = Progress(end_time, quiet=options.quiet, label=options.label,
+                            interval=options.progress_interval, log=outputs.log)
+        watch = CompileWatch(on_first=lambda: progress.note(f"{COMPILE_NOTICE} ..."),
+                             seconds=setup_compile.seconds, count=setup_compile.count)
+        # the final restart file and the summary are written with the stop handler still on:
+        # a Ctrl-C while they are written is kept as a request (RunResult.stop_requested)
+        with _Stop() as stop:
+            with th.using(n_threads), watch:
+                try:
+                    with progress:
+                        progress.attach(outputs.logger)
+                        if resume is None:
+                            _start(model, plan, state, outputs)
+                        else:
+                            _resume(model, plan, state, outputs, resume, end_time, extra)
+                        if watch.compiled:
+                            progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
+                        progress.begin(state.t)
+                        _loop(model, plan, state, outputs, progress, stop, end_time, dumps,
+                              extra)
+                except Termination as term:
+                    status, reason, where = term.status, term.reason, term.where
+                except KeyboardInterrupt:
+                    complete = False
+                    status, reason = INTERRUPT, f"interrupted by the user at t={state.t:.6g} ms"
+            extra["compile_seconds"] = round(watch.seconds, 3)
+            if (status != NORMAL or dumps.at_end) and state.cycle > 0:
+                _final_dump(model, state, outputs, extra, complete, dumps)
+            wall = time.perf_counter() - wall0
+            extra["wall_seconds_total"] = round(_wall_total(extra), 3)
+            summary = outputs.finish(state, status, reason, where, wall,
+                                     {k: v for k, v in extra.items() if not k.startswith("_")})
+            requested = stop.requested
+        return RunResult(status, reason, state.t, state.cycle, summary, out, requested)
 
 
 def _step_setter(state: State) -> str:

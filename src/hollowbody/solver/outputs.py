@@ -40,6 +40,7 @@ from hollowbody.solver.d3plot_output import make_series, state_fields
 from hollowbody.solver.energies import energies, node_velocity_full_step
 from hollowbody.solver.energy_kernels import share_energy
 from hollowbody.solver.joints import JointTerm
+from hollowbody.solver.run_lock import check_free
 from hollowbody.solver.verdict import OK, Thresholds, assess, headline
 
 DEFAULT_HISTORY_COUNT = 500
@@ -88,12 +89,14 @@ def prepare_out_dir(out: Path, overwrite: bool, inputs: tuple[Path, ...] = ()) -
     A folder holding an earlier run (:data:`EARLIER_RUN`) is refused with a
     UserInputError unless ``overwrite``, which deletes the earlier run's files
     (:data:`RUN_OUTPUTS`) first. An input file (``inputs``) is never deleted: one
-    whose name is that of a run output is refused.
+    whose name is that of a run output is refused. A folder that a live run holds
+    (:mod:`hollowbody.solver.run_lock`) is refused whatever ``overwrite`` says.
     """
     out = Path(out)
     keep = _existing_folder(out, inputs)
     if keep is None:
         return
+    check_free(out)  # a run still going on there (solver.run_lock): touch nothing
     outputs = sorted({f for pat in RUN_OUTPUTS for f in out.glob(pat) if f.is_file()})
     clash = [f.name for f in outputs if f.resolve() in keep]
     if clash:
@@ -142,6 +145,8 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         shown = ", ".join(earlier[:6]) + (", ..." if len(earlier) > 6 else "")
         raise UserInputError(f"{out} holds the outputs of an earlier run ({shown}): use "
                              "--overwrite to replace them, or another output folder")
+    for d in runs:  # a run still going on in one of them: delete nothing
+        check_free(d)
     for d in runs:
         prepare_out_dir(d, True, inputs)
     for f in own + extra:

@@ -215,6 +215,7 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     ``dump_minutes``: a restart file every this many minutes of wall time (0: none;
     hollowbody engine). A run stopped by the user raises :class:`KeyboardInterrupt`
     (:func:`run_case` then reads its record back from its folder)."""
+    from hollowbody.solver.run_lock import check_free
     from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
 
     label = "user" if model is not None else tissue
@@ -222,6 +223,7 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     rec = RunRecord(case.name, speed, label, folder)
     opts = dict(quiet=quiet, threads=threads, engine=engine, np_=np_,
                 engine_path=engine_path, dump_minutes=dump_minutes)
+    check_free(folder)  # a run still going on in this folder: touch nothing of it
     if resume and engine == "hollowbody":
         action, why = resume_action(folder, end_time)
         if action in (KEEP, RESUME):

@@ -154,3 +154,31 @@ def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
     main([*command("3"), "--resume"])
     assert "ended normally at t=3 ms: kept" in capsys.readouterr().out
     assert json.loads((run / "summary.json").read_text()) == s
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="process checks by signal 0")
+def test_a_run_still_going_on_in_its_folder_is_left_alone(tmp_path, capsys):
+    """A second ``validate`` on a folder where a run still runs (its lock held by a
+    live process): refused with exit 2 before anything of that run is touched."""
+    import socket
+    import subprocess
+    import sys
+
+    from hollowbody.solver.run_lock import LOCK_NAME, _start_ticks
+
+    f = _folder(tmp_path, summary={"status": "user interrupt", "end_time_ms": 17.3}, dump=17.3)
+    live = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
+    try:
+        (f / LOCK_NAME).write_text(json.dumps({
+            "pid": live.pid, "host": socket.gethostname(), "started": "today",
+            "ticks": _start_ticks(live.pid)}))
+        before = {p.name: p.read_bytes() for p in f.iterdir()}
+        for extra in (["--resume"], ["--overwrite"]):
+            code = main(["validate", "thorax", "--speed", "4.4", "--tissue", "hollow",
+                         "--out", str(tmp_path), *extra])
+            assert code == 2
+            assert "in use by another hollowbody run" in capsys.readouterr().err
+            assert {p.name: p.read_bytes() for p in f.iterdir()} == before
+    finally:
+        live.kill()
+        live.wait()
