@@ -63,7 +63,7 @@ def _holder(path: Path) -> dict | None:
     """The lock's contents, or None when there is no lock file."""
     try:
         text = path.read_text()
-    except FileNotFoundError:
+    except (FileNotFoundError, NotADirectoryError):  # no lock (or no folder) there
         return None
     except OSError as exc:
         raise UserInputError(f"{path}: cannot read the run lock ({exc.strerror})") from None
@@ -93,9 +93,10 @@ def _busy(out: Path, path: Path, info: dict) -> str | None:
                 f"{since}): wait for it to end or choose another output folder; if that "
                 f"run is over, delete {path}")
     if host and _alive(pid, info.get("ticks")):
+        unsure = f"; if no such run is going on, delete {path}" if os.name == "nt" else ""
         return (f"{out} is in use by another hollowbody run (process {pid}, started "
                 f"{since}): wait for it to end, stop it (Ctrl-C or SIGTERM: it keeps its "
-                "results and restart file), or choose another output folder")
+                f"results and restart file), or choose another output folder{unsure}")
     return None
 
 
