@@ -45,12 +45,11 @@ def measure(calls: int) -> dict[str, list[float]]:
         for i in prange(a.shape[0]):
             a[i] += 1.0
 
-    @njit
-    def serial_gap(us):  # pragma: no cover - jit
-        s = 0.0
-        for i in range(int(us * 300.0)):
-            s += i * 1.0e-9
-        return s
+    def serial_gap(us: float) -> None:
+        """Keep the main thread busy for ``us`` microseconds (serial work)."""
+        end = time.perf_counter() + 1e-6 * us
+        while time.perf_counter() < end:
+            pass
 
     a = np.zeros(2)
     numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))

@@ -24,6 +24,7 @@ import numpy as np
 from hollowbody.calibrate.evaluation import finite_or_none, speed_dir
 from hollowbody.calibrate.simulate import EXCEPTION, NORMAL
 from hollowbody.curves.force_displacement import ForceDisplacement, write_csv
+from hollowbody.solver.run_lock import check_free
 
 CURVE_FILE = "force_displacement.csv"
 REFERENCE_FILE = "reference.json"
@@ -55,6 +56,7 @@ def run_reference(task: ReferenceTask) -> dict:
     """Run the solid block; write ``reference.json``; return its content."""
     rd = Path(task.run_dir)
     if rd.exists():
+        check_free(rd)  # a reference still running there (another calibration): keep it
         shutil.rmtree(rd)
     rd.mkdir(parents=True)
     try:

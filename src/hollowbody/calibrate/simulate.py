@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from hollowbody.calibrate.space import PARAMETERS
 from hollowbody.curves.force_displacement import ForceDisplacement
+from hollowbody.solver.run_lock import check_free
 
 if TYPE_CHECKING:
     from hollowbody.engines.runner import ExternalEngine
@@ -152,6 +153,7 @@ class BlockSimulator:
         t0 = time.perf_counter()
         run_dir = Path(run_dir)
         run_dir.mkdir(parents=True, exist_ok=True)
+        check_free(run_dir)  # another process's run there: its console log kept
         # the solver's console warnings go to the run folder, not the calibration's terminal
         with open(run_dir / CONSOLE_LOG, "w") as fh, redirect_stderr(fh), redirect_stdout(fh):
             res = block_impact(cfg, run_dir, vtk=self.vtk, quiet=True, engine=self.engine)

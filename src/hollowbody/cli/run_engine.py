@@ -107,6 +107,7 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.cli.run import exit_code
     from hollowbody.engines.runner import execute, plan_run
     from hollowbody.solver.outputs import prepare_out_dir
+    from hollowbody.solver.run_lock import RunLock
 
     for flag, value in (("--restart", args.restart), ("--dump-cycles", args.dump_cycles),
                         ("--dump-minutes", args.dump_minutes),
@@ -120,15 +121,18 @@ def main(args: argparse.Namespace) -> int:
     np_ = int(args.np)
     threads = engine_threads(args.threads)
     memory = _memory(args.memory)
-    if not args.dry_run:
-        prepare_out_dir(out, args.overwrite, (args.deck,))
-    prep = plan_run(args.engine, args.deck, out, np_=np_, threads=threads,
-                    engine_path=args.engine_path, dry_run=args.dry_run, memory=memory,
-                    write=not args.dry_run, end_time=args.end_time)
     if args.dry_run:
+        prep = plan_run(args.engine, args.deck, out, np_=np_, threads=threads,
+                        engine_path=args.engine_path, dry_run=True, memory=memory,
+                        write=False, end_time=args.end_time)
         print(prep.describe())
         return 0
-    summary = execute(prep, quiet=args.quiet)
+    with RunLock(out):  # one run at a time in the folder (solver.run_lock)
+        prepare_out_dir(out, args.overwrite, (args.deck,))
+        prep = plan_run(args.engine, args.deck, out, np_=np_, threads=threads,
+                        engine_path=args.engine_path, dry_run=False, memory=memory,
+                        write=True, end_time=args.end_time)
+        summary = execute(prep, quiet=args.quiet)
     print(f"{summary['status']}: {summary['reason']}")
     print(f"  {args.engine} {summary.get('engine_version') or ''}".rstrip()
           + f", {summary.get('cycles')} cycles, end time {summary.get('end_time_ms')} ms, "

@@ -94,12 +94,12 @@ from hollowbody.model.model import ContactDef, Model
 #: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
 PENMAX = 0.4
 #: Passes whose nodes plus near pairs are fewer than this run serially. A threaded
-#: kernel costs a wake-up of the waiting threads per call: ~3 us while they spin,
+#: kernel costs a wake-up of the waiting threads per call: ~2 us while they spin,
 #: 60-140 us with the passive wait policy that runs set (solver.threads) on the
 #: shared two-core machine of BENCHMARKS.md, and a pass costs ~16 ns per near pair.
 #: The hollow block's passes (5,209 nodes and ~35,000 near pairs at most) were
 #: slower threaded than serial there, every kernel of them (2 threads, idle
-#: machine, 100 km/h: contact 5.3-7.1 s against 4.4-4.7 s on one thread).
+#: machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on one thread).
 PARALLEL_MIN_NODES = 65536
 #: The threaded near filter and bucket sort count each node's pairs in one sweep
 #: and write them in a second: on two threads that is the serial work again, plus

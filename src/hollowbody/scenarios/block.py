@@ -384,8 +384,16 @@ def block_impact(cfg: BlockConfig, out_dir: str | Path, vtk: bool = True,
     ``summary.json`` (a copy of the engine's, with the impact outcome) are written to
     ``out_dir`` as for an embedded run. EngineNotFound when it is not installed.
     """
+    from hollowbody.solver.run_lock import RunLock
+
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    with RunLock(out):  # deck, run and curve files: one writer at a time
+        return _block_impact(cfg, out, vtk, quiet, engine)
+
+
+def _block_impact(cfg: BlockConfig, out: Path, vtk: bool, quiet: bool,
+                  engine: ExternalEngine | None) -> BlockResult:
+    """:func:`block_impact` with ``out`` held."""
     deck_path = write_block_deck(cfg, out)
     label = f"block {cfg.structure} {cfg.tissue} {cfg.speed_kmh:g} km/h"
     if engine is None:

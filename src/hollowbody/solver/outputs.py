@@ -132,6 +132,8 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
     keep = _existing_folder(out, inputs)
     if keep is None:
         return
+    for d in sorted({d for pat in run_dirs for d in out.glob(pat) if d.is_dir()}):
+        check_free(d)  # a run still going on in one of them: touch nothing
     own = sorted({f for pat in files for f in out.glob(pat) if f.is_file()})
     runs = sorted({d for pat in run_dirs for d in out.glob(pat)
                    if d.is_dir() and _earlier_run(d)})
@@ -145,8 +147,6 @@ def prepare_runs_dir(out: Path, overwrite: bool, files: tuple[str, ...],
         shown = ", ".join(earlier[:6]) + (", ..." if len(earlier) > 6 else "")
         raise UserInputError(f"{out} holds the outputs of an earlier run ({shown}): use "
                              "--overwrite to replace them, or another output folder")
-    for d in runs:  # a run still going on in one of them: delete nothing
-        check_free(d)
     for d in runs:
         prepare_out_dir(d, True, inputs)
     for f in own + extra:

@@ -215,15 +215,31 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     ``dump_minutes``: a restart file every this many minutes of wall time (0: none;
     hollowbody engine). A run stopped by the user raises :class:`KeyboardInterrupt`
     (:func:`run_case` then reads its record back from its folder)."""
-    from hollowbody.solver.run_lock import check_free
-    from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
+    from hollowbody.solver.run_lock import RunLock
 
     label = "user" if model is not None else tissue
     folder = out / case.name / f"{speed:g}ms" / label
+    # held from the set-up to the last result read (a run still going on in this
+    # folder, another validation's: refused before anything of it is touched)
+    with RunLock(folder):
+        return _run_one(case, speed, tissue, out, folder, label, mesh=mesh,
+                        end_time=end_time, model=model, landmarks=landmarks,
+                        landmarks_path=landmarks_path, dry_run=dry_run, quiet=quiet,
+                        threads=threads, engine=engine, np_=np_, engine_path=engine_path,
+                        resume=resume, dump_minutes=dump_minutes, log=log)
+
+
+def _run_one(case: Case, speed: float, tissue: str, out: Path, folder: Path, label: str, *,
+             mesh: float, end_time: float | None, model: Path | None, landmarks: dict | None,
+             landmarks_path: Path | None, dry_run: bool, quiet: bool,
+             threads: int | str | None, engine: str, np_: int, engine_path: str | None,
+             resume: bool, dump_minutes: float, log: Callable[[str], None]) -> RunRecord:
+    """:func:`run_one` with ``folder`` held."""
+    from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
+
     rec = RunRecord(case.name, speed, label, folder)
     opts = dict(quiet=quiet, threads=threads, engine=engine, np_=np_,
                 engine_path=engine_path, dump_minutes=dump_minutes)
-    check_free(folder)  # a run still going on in this folder: touch nothing of it
     if resume and engine == "hollowbody":
         action, why = resume_action(folder, end_time)
         if action in (KEEP, RESUME):

@@ -156,22 +156,23 @@ def test_stop_resume_extend_keep(tmp_path, capsys, monkeypatch):
     assert json.loads((run / "summary.json").read_text()) == s
 
 
-@pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="process checks by signal 0")
 def test_a_run_still_going_on_in_its_folder_is_left_alone(tmp_path, capsys):
-    """A second ``validate`` on a folder where a run still runs (its lock held by a
-    live process): refused with exit 2 before anything of that run is touched."""
-    import socket
+    """A second ``validate`` on a folder that another process holds (a run still
+    going on there): refused with exit 2 before anything of that run is touched."""
     import subprocess
     import sys
 
-    from hollowbody.solver.run_lock import LOCK_NAME, _start_ticks
+    from hollowbody.solver import run_lock
 
+    if run_lock.fcntl is None:
+        pytest.skip("folders are locked by flock")
     f = _folder(tmp_path, summary={"status": "user interrupt", "end_time_ms": 17.3}, dump=17.3)
-    live = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
+    hold = ("import sys, time\nfrom hollowbody.solver.run_lock import RunLock\n"
+            "RunLock(sys.argv[1]).acquire()\nprint('held', flush=True)\ntime.sleep(120)\n")
+    live = subprocess.Popen([sys.executable, "-c", hold, str(f)], stdout=subprocess.PIPE,
+                            text=True)
     try:
-        (f / LOCK_NAME).write_text(json.dumps({
-            "pid": live.pid, "host": socket.gethostname(), "started": "today",
-            "ticks": _start_ticks(live.pid)}))
+        assert live.stdout.readline().strip() == "held"
         before = {p.name: p.read_bytes() for p in f.iterdir()}
         for extra in (["--resume"], ["--overwrite"]):
             code = main(["validate", "thorax", "--speed", "4.4", "--tissue", "hollow",
