@@ -54,6 +54,7 @@ def run(kind: str, cycles: int, threads: int
     numba.set_num_threads(threads)
     model, rt = build(kind)
     rt.parallel_min_nodes = 0 if threads > 1 else 1 << 62
+    rt.parallel_min_rows = 0 if threads > 1 else 1 << 62
     rt.two_sweep_threads = 2  # the threaded sort and near filter too
     n = model.n_nodes
     rng = np.random.default_rng(0)

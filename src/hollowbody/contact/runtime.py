@@ -93,18 +93,21 @@ from hollowbody.model.model import ContactDef, Model
 #: Release depth, as a fraction of the element depth V / A behind a solid face
 #: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
 PENMAX = 0.4
-#: Passes whose nodes plus near pairs are fewer than this run serially. A threaded
-#: kernel costs a wake-up of the waiting threads per call: ~2 us while they spin,
-#: 60-140 us with the passive wait policy that runs set (solver.threads) on the
-#: shared two-core machine of BENCHMARKS.md, and a pass costs ~16 ns per near pair.
-#: The hollow block's passes (5,209 nodes and ~35,000 near pairs at most) were
-#: slower threaded than serial there, every kernel of them (2 threads, idle
-#: machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on one thread).
-PARALLEL_MIN_NODES = 65536
-#: The threaded near filter and bucket sort count each node's pairs in one sweep
-#: and write them in a second: on two threads that is the serial work again, plus
-#: the wake-ups, so they run threaded only from this many threads on.
+#: A threaded kernel costs a wake-up of the waiting threads per call: ~2 us while
+#: they spin, 60-140 us with the passive wait policy that runs set (solver.threads) on
+#: the shared two-core machine of BENCHMARKS.md. So a pass runs its per-cycle kernels
+#: (frames, detection, forces, kinematic limit) threaded only from this many active
+#: rows (nodes with near pairs or a contact). The hollow block's passes (at most 3,182
+#: active rows of 5,209 nodes) were slower threaded than serial there (2 threads, idle
+#: machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on one thread); the contact
+#: benchmark's plate (5,041 active rows) gains 1.14x (benchmarks/bench_contact.py).
+PARALLEL_MIN_ROWS = 4096
+#: The threaded near filter and bucket sort count each node's pairs in one sweep and
+#: write them in a second: on two threads that is the serial work again, plus the
+#: wake-ups, so they run threaded only from this many threads on, and for passes of
+#: at least PARALLEL_MIN_NODES nodes plus near pairs.
 TWO_SWEEP_MIN_THREADS = 3
+PARALLEL_MIN_NODES = 65536
 #: Re-sort when the nodes have moved this fraction of the bucket margin relative to
 #: one common translation (:func:`hollowbody.contact.penalty.gather`).
 _RESORT_FRACTION = 0.5
@@ -250,9 +253,10 @@ class ContactRuntime:
         self.cdef = cdef
         #: release depth of solid faces / element depth (see set_penmax)
         self.penmax = PENMAX
-        #: passes with at least this many nodes plus near pairs use the parallel
-        #: kernels; the count-then-write ones (near filter, bucket sort) only with at
-        #: least two_sweep_threads threads
+        #: per-cycle kernels threaded from this many active rows of a pass; the
+        #: count-then-write ones (near filter, bucket sort) from parallel_min_nodes
+        #: nodes plus near pairs and two_sweep_threads threads
+        self.parallel_min_rows = PARALLEL_MIN_ROWS
         self.parallel_min_nodes = PARALLEL_MIN_NODES
         self.two_sweep_threads = TWO_SWEEP_MIN_THREADS
         self.sort_interval = max(1, int(model.controls.contact_sort_interval or 100))
@@ -508,13 +512,15 @@ class ContactRuntime:
         self.n_sorts += 1
 
     def _threaded(self, p: _Pass, sweeps: int = 1) -> bool:
-        """Use the threaded kernels for pass p: its nodes plus its near pairs (the
-        work of a pass) reach parallel_min_nodes, and numba has more than one
-        thread (at least two_sweep_threads for the kernels that count and then
-        write, ``sweeps=2``: with fewer they only repeat the serial work)."""
-        need = 2 if sweeps == 1 else max(2, self.two_sweep_threads)
+        """Use the threaded kernels for pass p. Per-cycle kernels (``sweeps=1``): p has
+        parallel_min_rows active rows and numba more than one thread. Near filter and
+        bucket sort (``sweeps=2``, count then write): p's nodes plus near pairs reach
+        parallel_min_nodes and numba runs two_sweep_threads threads (with fewer they
+        only repeat the serial work)."""
+        if sweeps == 1:
+            return p.act.shape[0] >= self.parallel_min_rows and get_num_threads() > 1
         return (p.nodes.shape[0] + int(p.nptr[-1]) >= self.parallel_min_nodes
-                and get_num_threads() >= need)
+                and get_num_threads() >= max(2, self.two_sweep_threads))
 
     def _filter(self) -> None:
         """Near lists of every pass from its far lists, at the current coordinates."""
