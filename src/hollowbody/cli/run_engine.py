@@ -107,7 +107,7 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.cli.run import exit_code
     from hollowbody.engines.runner import execute, plan_run
     from hollowbody.solver.outputs import prepare_out_dir
-    from hollowbody.solver.run_lock import RunLock, check_free
+    from hollowbody.solver.run_lock import RunLock
 
     for flag, value in (("--restart", args.restart), ("--dump-cycles", args.dump_cycles),
                         ("--dump-minutes", args.dump_minutes),
@@ -127,8 +127,7 @@ def main(args: argparse.Namespace) -> int:
                         write=False, end_time=args.end_time)
         print(prep.describe())
         return 0
-    check_free(out)  # one run at a time in the folder (solver.run_lock)
-    prepare_out_dir(out, args.overwrite, (args.deck,))
+    prepare_out_dir(out, args.overwrite, (args.deck,))  # refuses a held folder
     prep = plan_run(args.engine, args.deck, out, np_=np_, threads=threads,
                     engine_path=args.engine_path, dry_run=False, memory=memory,
                     write=True, end_time=args.end_time)  # nothing written without the engine

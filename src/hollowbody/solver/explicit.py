@@ -167,7 +167,6 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
     with RunLock(out) as lock:
         if resume is None:  # a restart continues the folder's run
             prepare_out_dir(out, options.overwrite, options.inputs)
-        out.mkdir(parents=True, exist_ok=True)
         end_time = options.end_time if options.end_time is not None else model.controls.end_time
         if options.erode is not None:
             plan.erode = bool(options.erode)

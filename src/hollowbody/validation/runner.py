@@ -216,70 +216,56 @@ def run_one(case: Case, speed: float, tissue: str, out: Path, *, mesh: float = 3
     hollowbody engine). A run stopped by the user raises :class:`KeyboardInterrupt`
     (:func:`run_case` then reads its record back from its folder)."""
     from hollowbody.solver.run_lock import RunLock
+    from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
 
     label = "user" if model is not None else tissue
     folder = out / case.name / f"{speed:g}ms" / label
     # held from the set-up to the last result read (a run still going on in this
     # folder, another validation's: refused before anything of it is touched)
     with RunLock(folder):
-        return _run_one(case, speed, tissue, out, folder, label, mesh=mesh,
-                        end_time=end_time, model=model, landmarks=landmarks,
-                        landmarks_path=landmarks_path, dry_run=dry_run, quiet=quiet,
-                        threads=threads, engine=engine, np_=np_, engine_path=engine_path,
-                        resume=resume, dump_minutes=dump_minutes, log=log)
-
-
-def _run_one(case: Case, speed: float, tissue: str, out: Path, folder: Path, label: str, *,
-             mesh: float, end_time: float | None, model: Path | None, landmarks: dict | None,
-             landmarks_path: Path | None, dry_run: bool, quiet: bool,
-             threads: int | str | None, engine: str, np_: int, engine_path: str | None,
-             resume: bool, dump_minutes: float, log: Callable[[str], None]) -> RunRecord:
-    """:func:`run_one` with ``folder`` held."""
-    from hollowbody.validation.resume import KEEP, RESUME, resume_action, update_end_time
-
-    rec = RunRecord(case.name, speed, label, folder)
-    opts = dict(quiet=quiet, threads=threads, engine=engine, np_=np_,
-                engine_path=engine_path, dump_minutes=dump_minutes)
-    if resume and engine == "hollowbody":
-        action, why = resume_action(folder, end_time)
-        if action in (KEEP, RESUME):
-            kept = load_setup(folder)
-            if model is None and kept.mesh is not None and abs(kept.mesh - mesh) > 1e-9:
-                raise UserInputError(f"--mesh {mesh:g} differs from the run in {folder} "
-                                     f"({kept.mesh:g} mm): resume with --mesh {kept.mesh:g}, "
-                                     "or use another --out")
-            s = update_end_time(folder, end_time) if action == RESUME else kept
-            rec.setup = s.to_json()
-            log(f"{case.name} {speed:g} m/s {label}: {why}")
-            if action == KEEP:
-                _read_back(rec, s)
+        rec = RunRecord(case.name, speed, label, folder)
+        opts = dict(quiet=quiet, threads=threads, engine=engine, np_=np_,
+                    engine_path=engine_path, dump_minutes=dump_minutes)
+        if resume and engine == "hollowbody":
+            action, why = resume_action(folder, end_time)
+            if action in (KEEP, RESUME):
+                kept = load_setup(folder)
+                if model is None and kept.mesh is not None and abs(kept.mesh - mesh) > 1e-9:
+                    raise UserInputError(f"--mesh {mesh:g} differs from the run in {folder} "
+                                         f"({kept.mesh:g} mm): resume with --mesh {kept.mesh:g}, "
+                                         "or use another --out")
+                s = update_end_time(folder, end_time) if action == RESUME else kept
+                rec.setup = s.to_json()
+                log(f"{case.name} {speed:g} m/s {label}: {why}")
+                if action == KEEP:
+                    _read_back(rec, s)
+                    return rec
+                try:
+                    _execute(rec, s, folder / "deck.k", restart=True, **opts)
+                except UserInputError as err:  # e.g. a damaged restart file: say why
+                    rec.status, rec.reason = "failed", str(err)
                 return rec
-            try:
-                _execute(rec, s, folder / "deck.k", restart=True, **opts)
-            except UserInputError as err:  # e.g. a damaged restart file: say why
-                rec.status, rec.reason = "failed", str(err)
+            log(f"{case.name} {speed:g} m/s {label}: {why}")
+            # started again: an earlier summary must not pass for this run's if it is stopped
+            (folder / "summary.json").unlink(missing_ok=True)
+        log(f"{case.name} {speed:g} m/s {label}: building the set-up")
+        t0 = time.perf_counter()
+        s = build_setup(case, speed, tissue, mesh, end_time, model, landmarks, landmarks_path)
+        if model is None:
+            s.mesh = float(mesh)  # recorded in setup.json: a resume checks it
+        deck = write_setup(s, folder)
+        rec.setup_seconds = time.perf_counter() - t0
+        rec.setup = s.to_json()
+        if dry_run:
+            rec.status = "not run (dry run)"
             return rec
-        log(f"{case.name} {speed:g} m/s {label}: {why}")
-        # started again: an earlier summary must not pass for this run's if it is stopped
-        (folder / "summary.json").unlink(missing_ok=True)
-    log(f"{case.name} {speed:g} m/s {label}: building the set-up")
-    t0 = time.perf_counter()
-    s = build_setup(case, speed, tissue, mesh, end_time, model, landmarks, landmarks_path)
-    if model is None:
-        s.mesh = float(mesh)  # recorded in setup.json: a resume checks it
-    deck = write_setup(s, folder)
-    rec.setup_seconds = time.perf_counter() - t0
-    rec.setup = s.to_json()
-    if dry_run:
-        rec.status = "not run (dry run)"
+        log(f"{case.name} {speed:g} m/s {label}: running {s.end_time:g} ms on {engine} -> "
+            f"{folder}")
+        try:
+            _execute(rec, s, deck, restart=False, **opts)
+        except UserInputError as err:  # a deck the run refuses: keep the record, say why
+            rec.status, rec.reason = "failed", str(err)
         return rec
-    log(f"{case.name} {speed:g} m/s {label}: running {s.end_time:g} ms on {engine} -> "
-        f"{folder}")
-    try:
-        _execute(rec, s, deck, restart=False, **opts)
-    except UserInputError as err:  # a deck the run refuses: keep the record, say why
-        rec.status, rec.reason = "failed", str(err)
-    return rec
 
 
 def rate_records(records: list[RunRecord], corridor: Corridor | None = None) -> None:
