@@ -145,9 +145,7 @@ def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, 
     """Candidates of nodes i0 <= i < i1.
 
     fill 0: count into ptr[i + 1]; 1: write into out from ptr[i] (ptr already
-    cumulative); 2 (serial, one pass): ptr[i + 1] = ptr[i] + count, written
-    into out while it fits (the caller checks ptr[-1] <= out.size).
-    mark (S,) int32: mark[s] == i leaves segment s out for node i. The node's
+    cumulative). mark (S,) int32: mark[s] == i leaves segment s out for node i. The node's
     exclusion list is stamped into it once, so a box hit costs one look-up,
     not a scan of the list (single-surface lists hold ~20 segments per node,
     most of them box hits); stamps need no clearing (start at -1).
@@ -182,13 +180,11 @@ def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, 
                     if (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd
                             or seg[s, 2] == nd or seg[s, 3] == nd):
                         continue
-                    if fill == 1 or (fill == 2 and base + n < out.shape[0]):
+                    if fill == 1:
                         out[base + n] = s
                     n += 1
         if fill == 0:
             ptr[i + 1] = n
-        elif fill == 2:
-            ptr[i + 1] = base + n
 
 
 @njit(cache=True, parallel=True)
@@ -205,10 +201,133 @@ def _cands_par(x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_
 
 
 @njit(cache=True)
-def _cands_ser(x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr,
-               out, fill, mark):
-    _cands_range(0, nodes.shape[0], x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs,
-                 ex_ptr, ex_seg, ptr, out, fill, mark)
+def _node_keys(x, nodes, origin, h, dims, keys):
+    """keys (ns,) int64: the grid cell of each node, -1 outside the grid."""
+    for i in range(nodes.shape[0]):
+        nd = nodes[i]
+        ci = _cell(x[nd, 0], origin[0], h)
+        cj = _cell(x[nd, 1], origin[1], h)
+        ck = _cell(x[nd, 2], origin[2], h)
+        if 0 <= ci < dims[0] and 0 <= cj < dims[1] and 0 <= ck < dims[2]:
+            keys[i] = ci + dims[0] * (cj + dims[1] * ck)
+        else:
+            keys[i] = -1
+
+
+@njit(cache=True)
+def _max_run(cstart, skeys):
+    """Most segments registered in one cell (dense: cstart ranges; sparse: runs of skeys)."""
+    m = 0
+    if cstart.shape[0] > 0:
+        for c in range(cstart.shape[0] - 1):
+            m = max(m, cstart[c + 1] - cstart[c])
+        return m
+    r = 0
+    while r < skeys.shape[0]:
+        r1 = r + 1
+        while r1 < skeys.shape[0] and skeys[r1] == skeys[r]:
+            r1 += 1
+        m = max(m, r1 - r)
+        r = r1
+    return m
+
+
+@njit(cache=True)
+def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, order, nkeys,
+                 cnt, start, tmp, box, hit, mark):
+    """Candidates of every node, cell by cell (serial).
+
+    order (ns,): the node rows sorted by their cell nkeys (ns,) (-1: outside the
+    grid, no candidates). The boxes of a cell's segments are copied once into box
+    (6, M) (M >= the most segments of a cell) and tested against each node of the
+    cell without branches into hit (M,) uint8, a loop the compiler vectorises (a box
+    test that branches mispredicts about one time in ten; measured on the crushed
+    hollow block's self-contact: 11.2 -> 4.7 ms per search with the cell order); the
+    hits are then compacted and checked
+    against the node's exclusions (mark, as in :func:`_cands_range`). A node's
+    candidates go to tmp from start[i] (cnt[i] of them), in the order of the grid's
+    segment list (as the threaded search). While tmp has no room for a node's whole
+    cell, nodes are only counted (box hits, an upper bound). Returns the number of
+    entries written or counted: all were written if it is <= tmp.size - M.
+    """
+    n = 0
+    r = 0
+    nn = order.shape[0]
+    cap = tmp.shape[0]
+    while r < nn:
+        key = nkeys[order[r]]
+        r1 = r + 1
+        while r1 < nn and nkeys[order[r1]] == key:
+            r1 += 1
+        m = 0
+        q0 = 0
+        if key >= 0:
+            if cstart.shape[0] > 0:  # dense grid: the cell's range directly
+                q0 = cstart[key]
+                m = cstart[key + 1] - q0
+            else:
+                q0 = _lower_bound(skeys, key)
+                q1 = q0
+                while q1 < skeys.shape[0] and skeys[q1] == key:
+                    q1 += 1
+                m = q1 - q0
+        for j in range(m):
+            s = ssegs[q0 + j]
+            for k in range(3):
+                box[k, j] = lo[s, k]
+                box[3 + k, j] = hi[s, k]
+        b0 = box[0]
+        b1 = box[1]
+        b2 = box[2]
+        b3 = box[3]
+        b4 = box[4]
+        b5 = box[5]
+        for t in range(r, r1):
+            i = order[t]
+            nd = nodes[i]
+            px = x[nd, 0]
+            py = x[nd, 1]
+            pz = x[nd, 2]
+            start[i] = n
+            n0 = n
+            for j in range(m):  # no branch, no dependence: vectorised
+                hit[j] = ((b0[j] <= px) & (px <= b3[j]) & (b1[j] <= py) & (py <= b4[j])
+                          & (b2[j] <= pz) & (pz <= b5[j]))
+            if n + m > cap:  # no room: count the box hits only
+                for j in range(m):
+                    n += hit[j]
+                cnt[i] = n - n0
+                continue
+            for j in range(m):
+                tmp[n] = j
+                n += hit[j]
+            if n > n0:
+                for e in range(ex_ptr[i], ex_ptr[i + 1]):
+                    mark[ex_seg[e]] = i
+                w = n0
+                for q in range(n0, n):
+                    s = ssegs[q0 + tmp[q]]
+                    if not (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd
+                            or seg[s, 2] == nd or seg[s, 3] == nd):
+                        tmp[w] = s
+                        w += 1
+                n = w
+            cnt[i] = n - n0
+        r = r1
+    return n
+
+
+@njit(cache=True)
+def _gather_rows(cnt, start, tmp, ptr, out):
+    """CSR in node order: ptr (ns + 1,) from cnt (ns,), out the rows tmp[start[i]:][:cnt[i]]."""
+    ptr[0] = 0
+    for i in range(cnt.shape[0]):
+        ptr[i + 1] = ptr[i] + cnt[i]
+    for i in range(cnt.shape[0]):
+        a = ptr[i]
+        b = start[i]
+        for k in range(cnt[i]):
+            out[a + k] = tmp[b + k]
 
 
 @njit(cache=True)
@@ -296,14 +415,26 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         cand = np.empty(int(ptr[-1]), np.int32)
         _cands_par(*grid, cand, 1, mark)
         return ptr, cand
+    nkeys = np.empty(ns, np.int64)
+    _node_keys(x, nodes, origin, h, dims, nkeys)
+    norder = np.argsort(nkeys, kind="stable")
+    mx = int(_max_run(cstart, skeys))
+    box = np.empty((6, mx))
+    hit = np.empty(mx, np.uint8)
+    ncnt = np.empty(ns, np.int64)
+    start = np.empty(ns, np.int64)
     mark = np.full(seg.shape[0], -1, np.int32)
-    buf = np.empty(max(1024, 4 * ns, (5 * size_hint) // 4), np.int32)
-    _cands_ser(*grid, buf, 2, mark)
-    if int(ptr[-1]) > buf.shape[0]:
-        buf = np.empty(int(ptr[-1]), np.int32)
-        _cands_ser(*grid, buf, 1, mark)
-        return ptr, buf
-    return ptr, buf[:int(ptr[-1])].copy()
+    tmp = np.empty(max(1024, 4 * ns, (5 * size_hint) // 4) + mx, np.int32)
+    n = _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys,
+                     ncnt, start, tmp, box, hit, mark)
+    if n > tmp.shape[0] - mx:  # too small: n bounds the total, now it fits
+        tmp = np.empty(n + mx, np.int32)
+        mark[:] = -1
+        _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys,
+                     ncnt, start, tmp, box, hit, mark)
+    cand = np.empty(int(ncnt.sum()), np.int32)
+    _gather_rows(ncnt, start, tmp, ptr, cand)
+    return ptr, cand
 
 
 def brute_force_candidates(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray,

@@ -57,8 +57,7 @@ def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, sta
     any box reaches).
 
     fill 0: count into nptr[i + 1]; 1: write into ncand from nptr[i] (nptr
-    already cumulative); 2 (serial, one sweep): nptr[i + 1] = nptr[i] + count
-    and write. Writing stamps mark[s] = stamp for every segment written (threads
+    already cumulative). Writing stamps mark[s] = stamp for every segment written (threads
     may write the same stamp to the same entry: same value, no harm).
     """
     for i in range(i0, i1):
@@ -76,8 +75,33 @@ def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, sta
                     ncand[n] = s
                     mark[s] = stamp
                 n += 1
-        if fill != 1:
+        if fill == 0:
             nptr[i + 1] = n
+
+
+@njit(cache=True)
+def _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp):
+    """:func:`_near_rows` of every row in one sweep (nptr[0] = 0 set by the caller),
+    without branches in the pair loop: each listed segment is written and the count
+    moves on only for a near pair (a box test that branches mispredicts about one
+    time in five; the far lists keep about a third of their pairs). ncand must
+    hold ptr[-1] entries (the write position never passes the read one)."""
+    n = 0
+    for i in range(nodes.shape[0]):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        held = oseg[i]
+        n0 = n
+        for q in range(ptr[i], ptr[i + 1]):
+            s = cand[q]
+            ncand[n] = s
+            n += ((s == held) | ((lo[s, 0] <= px) & (px <= hi[s, 0]) & (lo[s, 1] <= py)
+                                 & (py <= hi[s, 1]) & (lo[s, 2] <= pz) & (pz <= hi[s, 2])))
+        for q in range(n0, n):
+            mark[ncand[q]] = stamp
+        nptr[i + 1] = n
 
 
 @njit(cache=True)
@@ -110,8 +134,7 @@ def near_filter(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
     """
     _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
     nptr[0] = 0
-    _near_rows(0, nodes.shape[0], x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp,
-               2)
+    _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp)
     return _marked(mark, stamp, nsact)
 
 
