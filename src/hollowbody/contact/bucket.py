@@ -215,6 +215,22 @@ def _node_keys(x, nodes, origin, h, dims, keys):
 
 
 @njit(cache=True)
+def _cell_order(keys, ncell):
+    """Node rows sorted by cell keys (ns,) int64 in [-1, ncell) (a stable counting sort)."""
+    start = np.zeros(ncell + 2, np.int64)
+    for i in range(keys.shape[0]):
+        start[keys[i] + 2] += 1
+    for c in range(2, ncell + 2):
+        start[c] += start[c - 1]
+    order = np.empty(keys.shape[0], np.int64)
+    for i in range(keys.shape[0]):
+        c = keys[i] + 1
+        order[start[c]] = i
+        start[c] += 1
+    return order
+
+
+@njit(cache=True)
 def _max_run(cstart, skeys):
     """Most segments registered in one cell (dense: cstart ranges; sparse: runs of skeys)."""
     m = 0
@@ -417,7 +433,10 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         return ptr, cand
     nkeys = np.empty(ns, np.int64)
     _node_keys(x, nodes, origin, h, dims, nkeys)
-    norder = np.argsort(nkeys, kind="stable")
+    if ncell <= 4 * ns:
+        norder = _cell_order(nkeys, ncell)
+    else:
+        norder = np.argsort(nkeys, kind="stable")
     mx = int(_max_run(cstart, skeys))
     box = np.empty((6, mx))
     hit = np.empty(mx, np.uint8)

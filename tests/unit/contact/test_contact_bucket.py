@@ -81,3 +81,25 @@ def test_one_pass_buffer_overflow_and_hint_agree():
     for p, c in (big, par):
         np.testing.assert_array_equal(p, small[0])
         np.testing.assert_array_equal(np.sort(c), np.sort(small[1]))
+
+
+def test_serial_and_threaded_lists_in_the_same_order():
+    """The serial search walks the nodes cell by cell and gathers the rows back into
+    node order; each node's list must be the threaded search's, entry for entry
+    (the grid's segment order), in both grid layouts and node-sort paths."""
+    rng = np.random.default_rng(7)
+    x, seg = _random_mesh(rng, 500, 600, spread=12.0)
+    nodes = rng.permutation(500)[:400].astype(np.int32)
+    grow = rng.uniform(0.2, 2.5, size=600)
+    ser = bucket_sort(x, nodes, seg, grow, parallel=False)
+    par = bucket_sort(x, nodes, seg, grow, parallel=True)
+    np.testing.assert_array_equal(ser[0], par[0])
+    np.testing.assert_array_equal(ser[1], par[1])
+
+
+def test_cell_order_is_a_stable_sort():
+    """The counting sort of node cells (-1: outside the grid) equals a stable argsort."""
+    rng = np.random.default_rng(3)
+    keys = rng.integers(-1, 40, size=1000).astype(np.int64)
+    np.testing.assert_array_equal(bucket._cell_order(keys, 40),
+                                  np.argsort(keys, kind="stable"))
