@@ -1,8 +1,9 @@
 """Near lists: the bucket sort's candidate lists cut down to the pairs close now.
 
 Two levels of lists, each valid (complete) while every node of the contact
-has moved less than half its margin since it was made, relative to one common
-translation (:func:`~hollowbody.contact.penalty.gather`), and each holding every
+has moved less than half its margin along each axis since it was made, relative
+to one common translation (:func:`~hollowbody.contact.penalty.gather`; the lists'
+boxes are axis-aligned), and each holding every
 node's current contact segment (:func:`keep_current`):
 
 * the *far* lists of :func:`~hollowbody.contact.bucket.bucket_sort`: every
@@ -14,8 +15,10 @@ node's current contact segment (:func:`keep_current`):
   rebuilt often, and the contact kernels then test and project only them.
 
 The far lists are first cut by distance (:func:`distance_cut`, at the sort):
-a box hit farther from the segment than the contact distance plus the far
-margin cannot come into contact before the next sort and is left out.
+a box hit farther from the segment than the contact distance plus sqrt(3) far
+margins (what node and segment can approach in space while they approach by
+less than the margin along each axis) cannot come into contact before the next
+sort and is left out.
 
 A pair that is not in the near list cannot be in contact before the near
 bound is reached (the argument of the bucket sort: node and segment surface
@@ -170,8 +173,9 @@ def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, war
     cen, nrm, rad2, warp (S, ...) the segment frames at x
     (:func:`~hollowbody.contact.frames.segment_frames`); oseg (ns,) int32 the
     segment each node is in contact with (kept: it may hold the node deeper);
-    margin mm the sort's margin (every node moves less than margin / 2, relative to
-    one common translation, until the next sort); ptr (ns + 1,) int64 / cand int32
+    margin mm: node and segment approach by less than this (in space) until the
+    next sort (sqrt(3) times the sort's margin, see
+    :func:`~hollowbody.contact.penalty.gather`); ptr (ns + 1,) int64 / cand int32
     the lists, compacted in place (each row keeps its order).
 
     A pair is in contact only at a foot point x_p on the segment (natural

@@ -320,30 +320,31 @@ def scatter_pass(act, nodes, seg, oseg, ow, of, f, fsum):
 
 
 @njit(cache=True, inline="always")
-def _spread(e0, e1, e2, m, a0, a1, a2, b0, b1, b2):
-    """One displacement (e0, e1, e2) into the largest |e|^2 m and the box a (min) /
-    b (max) per axis; returns them updated."""
-    return (max(m, e0 * e0 + e1 * e1 + e2 * e2), min(a0, e0), min(a1, e1), min(a2, e2),
-            max(b0, e0), max(b1, e1), max(b2, e2))
+def _spread(e0, e1, e2, a0, a1, a2, b0, b1, b2):
+    """One displacement (e0, e1, e2) into the box a (min) / b (max) per axis;
+    returns it updated."""
+    return min(a0, e0), min(a1, e1), min(a2, e2), max(b0, e0), max(b1, e1), max(b2, e2)
 
 
 @njit(cache=True)
 def gather(x, v, nodes, xl, vl, xsort, xnear):
     """Copy global rows x[nodes], v[nodes] into xl, vl (L, 3); return squared
-    bounds (mm^2) on how far the nodes moved *relative to one common
-    translation* since the last sort (positions xsort (L, 3)) and since the last
-    near-list filter (xnear (L, 3)).
+    bounds (mm^2) on how far the nodes moved *along any one axis, relative to one
+    common translation* since the last sort (positions xsort (L, 3)) and since the
+    last near-list filter (xnear (L, 3)): the squared half of the largest side of
+    the displacements' box.
 
-    Two nodes i, j approach by at most |u_i - u_j| <= |u_i - c| + |u_j - c| for any
-    translation c, so lists made with a margin m stay complete while every node is
-    within m/2 of c. Each bound is the smaller of max |u| (c = 0) and the half
-    diagonal of the displacements' box (c its centre, which every node is within):
-    walls crushed under an impactor move from 0 (base) to the impactor's travel
-    in one direction, half of what max |u| says.
+    Two nodes i, j approach along axis k by at most |u_ik - u_jk| <= b_k - a_k, the
+    side of the displacements' box along k (the translation c is its centre). The
+    lists are made with axis-aligned boxes enlarged by a margin m, so they stay
+    complete while every side is below m (bound below (m/2)^2); the Euclidean
+    approach is then below sqrt(3) m (the far lists' distance cut takes that).
+    An axis at a time counts what the boxes need: walls folding in every direction
+    (the crushed hollow block) move about as far along each axis, sqrt(3) less than
+    along the box's diagonal.
     """
     if nodes.shape[0] == 0:
         return 0.0, 0.0
-    m = mn = 0.0
     a0 = a1 = a2 = c0 = c1 = c2 = np.inf  # boxes since the sort (a, b), the filter (c, d)
     b0 = b1 = b2 = d0 = d1 = d2 = -np.inf
     for i in range(nodes.shape[0]):
@@ -351,15 +352,15 @@ def gather(x, v, nodes, xl, vl, xsort, xnear):
         for k in range(3):
             xl[i, k] = x[g, k]
             vl[i, k] = v[g, k]
-        m, a0, a1, a2, b0, b1, b2 = _spread(
+        a0, a1, a2, b0, b1, b2 = _spread(
             xl[i, 0] - xsort[i, 0], xl[i, 1] - xsort[i, 1], xl[i, 2] - xsort[i, 2],
-            m, a0, a1, a2, b0, b1, b2)
-        mn, c0, c1, c2, d0, d1, d2 = _spread(
+            a0, a1, a2, b0, b1, b2)
+        c0, c1, c2, d0, d1, d2 = _spread(
             xl[i, 0] - xnear[i, 0], xl[i, 1] - xnear[i, 1], xl[i, 2] - xnear[i, 2],
-            mn, c0, c1, c2, d0, d1, d2)
-    hs = 0.25 * ((b0 - a0) ** 2 + (b1 - a1) ** 2 + (b2 - a2) ** 2)
-    hn = 0.25 * ((d0 - c0) ** 2 + (d1 - c1) ** 2 + (d2 - c2) ** 2)
-    return min(m, hs), min(mn, hn)
+            c0, c1, c2, d0, d1, d2)
+    hs = 0.5 * max(b0 - a0, b1 - a1, b2 - a2)
+    hn = 0.5 * max(d0 - c0, d1 - c1, d2 - c2)
+    return hs * hs, hn * hn
 
 
 @njit(cache=True)

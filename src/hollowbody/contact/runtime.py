@@ -108,9 +108,10 @@ PARALLEL_MIN_ROWS = 4096
 #: at least PARALLEL_MIN_NODES nodes plus near pairs.
 TWO_SWEEP_MIN_THREADS = 3
 PARALLEL_MIN_NODES = 65536
-#: Re-sort when the nodes have moved this fraction of the bucket margin relative to
-#: one common translation (:func:`hollowbody.contact.penalty.gather`).
+#: Re-sort when the nodes have moved this fraction of the bucket margin along an axis
+#: relative to one common translation (:func:`hollowbody.contact.penalty.gather`).
 _RESORT_FRACTION = 0.5
+_SQRT3 = math.sqrt(3.0)
 #: Largest bucket-sort margin and the near-list margin, as fractions of the
 #: median segment size (see ContactRuntime._sort and hollowbody.contact.nearlist)
 FAR_MARGIN = 0.5
@@ -501,8 +502,11 @@ class ContactRuntime:
                                         p.ex_ptr, p.ex_seg, self._threaded(p, 2),
                                         size_hint=p.n_box_pairs)
             p.n_box_pairs = p.cand.shape[0]
+            # re-sorted when a side of the displacements' box reaches the margin: node and
+            # segment approach by less than sqrt(3) margins in space (penalty.gather)
             m = distance_cut(self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen,
-                             p.nrm, p.rad2, p.warp, p.oseg, self._margin, p.ptr, p.cand)
+                             p.nrm, p.rad2, p.warp, p.oseg, _SQRT3 * self._margin, p.ptr,
+                             p.cand)
             p.cand = p.cand[:m]
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)

@@ -1,7 +1,7 @@
 """When ContactRuntime rebuilds its lists, and that its lists never change a force.
 
 The far lists (bucket sort) are rebuilt when the contact's nodes have moved
-half the far margin relative to one common translation, the near lists
+half the far margin along an axis relative to one common translation, the near lists
 (nearlist.near_filter) when they have moved half the near margin, neither when
 elements erode. Every check here compares
 with a reference that lists every segment for every node (``AllPairs``): the
@@ -124,11 +124,13 @@ def test_slow_approach_between_near_list_filters():
 
 
 def test_displacement_bound_holds_every_pair():
-    """gather's bound D (relative to one translation) must cover every pair of
-    nodes, |u_i - u_j| <= 2 D, for any displacement field; it is never larger
-    than max |u| (the bound with no translation) and is half of it when the
-    nodes spread along one direction from rest (a crushed pile under an
-    impactor)."""
+    """gather's bound D (along any axis, relative to one translation) must cover
+    every pair of nodes along every axis, |u_ik - u_jk| <= 2 D, for any displacement
+    field (so |u_i - u_j| <= 2 sqrt(3) D in space); it is never larger than max |u|
+    (the bound with no translation), half of it when the nodes spread along one
+    direction from rest (a crushed pile under an impactor), and 1 / sqrt(3) of the
+    half diagonal of the displacements' box when they spread alike along the three
+    axes (folding walls)."""
     rng = np.random.default_rng(3)
     for case in range(40):
         n = int(rng.integers(1, 60))
@@ -141,14 +143,44 @@ def test_displacement_bound_holds_every_pair():
         xl, vl = np.zeros_like(x), np.zeros_like(x)
         d2, dn2 = gather(x, x, np.arange(n, dtype=np.int32), xl, vl, x0, x0)
         assert d2 == dn2
+        axis = np.max(np.abs(u[:, None, :] - u[None, :, :]))
+        assert axis <= 2.0 * np.sqrt(d2) * (1.0 + 1e-12)
         pair = np.max(np.linalg.norm(u[:, None, :] - u[None, :, :], axis=2))
-        assert pair <= 2.0 * np.sqrt(d2) * (1.0 + 1e-12)
+        assert pair <= 2.0 * np.sqrt(3.0 * d2) * (1.0 + 1e-12)
         assert d2 <= np.max(np.sum(u * u, axis=1))
-    u = np.zeros((11, 3))
+    z = np.zeros((11, 3))
+    u = z.copy()
     u[:, 2] = -np.linspace(0.0, 4.0, 11)  # base at rest, top moved 4 mm down
-    d2, _ = gather(u, u, np.arange(11, dtype=np.int32), np.zeros_like(u), np.zeros_like(u),
-                   np.zeros_like(u), np.zeros_like(u))
+    d2, _ = gather(u, u, np.arange(11, dtype=np.int32), z.copy(), z.copy(), z, z)
     assert d2 == pytest.approx(4.0)  # (4 / 2)^2: half of max |u| = 4 mm
+    u = np.outer(np.linspace(-1.0, 1.0, 11), [1.0, -1.0, 1.0])  # 2 mm along each axis
+    d2, _ = gather(u, u, np.arange(11, dtype=np.int32), z.copy(), z.copy(), z, z)
+    assert d2 == pytest.approx(1.0)  # the half diagonal would be sqrt(3) mm
+
+
+@pytest.mark.parametrize("offset, gap", [(2.0, 2.0), (2.0, 4.0), (4.0, 2.0)])
+def test_diagonal_approach_over_a_plate_corner(offset, gap):
+    """A block beside a plate's corner and above it moves along the diagonal (-1,
+    -1, -1) at 0.05 mm per cycle per axis onto the corner. The lists are rebuilt
+    when the motion along an axis reaches the margin, so between two sorts node and
+    segment approach by up to sqrt(3) margins in space, and the far lists' distance
+    cut must keep the pairs that close: forces equal the all-pairs search in every
+    cycle (with the cut at one margin, each of these cases loses a contact)."""
+    xb, cb = block_mesh((3, 3, 2), (12.0, 12.0, 8.0), (15.0 + offset, 15.0 + offset, gap))
+    xp, cp = plate_mesh((6, 6), (30.0, 30.0), (-15.0, -15.0, 0.0))
+    model = assemble_model([PartSpec(1, xb, cb), PartSpec(2, xp, cp, "shell", "elastic",
+                                                          {"E": 0.1, "PR": 0.3}, 1e-6, 2.0)],
+                           sort_interval=100)
+    a, b = _pair(model)
+    x = model.node_x0.copy()
+    v = np.zeros_like(x)
+    v[:xb.shape[0]] = -5.0
+    active = 0
+    for cycle in range(300):
+        _step_both(a, b, x, v, 0.01, cycle)
+        active += a.n_active
+        x += 0.01 * v
+    assert active > 0 and a.n_sorts >= 4
 
 
 def test_a_common_translation_does_not_re_sort():
