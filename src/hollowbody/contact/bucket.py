@@ -8,8 +8,9 @@ cells). The (cell key, segment) pairs are sorted by key; a node looks up its
 own cell by binary search and keeps the segments whose enlarged box contains
 it. The result is a CSR list per slave node (``ptr`` (ns + 1,), ``seg``).
 
-The list stays complete while every node has moved less than ``margin / 2``
-since the sort (node and segment can then approach by at most ``margin``):
+The list stays complete while node and segment corners have approached by less
+than ``margin`` along each axis since the sort (the boxes are axis-aligned; every
+node within ``margin / 2`` of one common translation along each axis suffices):
 :class:`~hollowbody.contact.runtime.ContactRuntime` re-sorts every
 ``contact_sort_interval`` cycles or earlier when that bound is reached.
 Grid cells are numbered densely (a counting sort groups the segments) unless
@@ -33,6 +34,9 @@ _MAX_PAIRS_PER_SEGMENT = 27
 #: grouped by a counting sort, a node's cell found by index.
 _DENSE_CELLS = 1 << 20
 _DENSE_PER_PAIR = 4
+#: Nodes are put in cell order by a counting sort while the grid has at most this
+#: many cells per node, else by an argsort of their cells.
+_COUNT_CELLS_PER_NODE = 4
 
 
 @njit(cache=True, inline="always")
@@ -433,7 +437,7 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         return ptr, cand
     nkeys = np.empty(ns, np.int64)
     _node_keys(x, nodes, origin, h, dims, nkeys)
-    if ncell <= 4 * ns:
+    if ncell <= _COUNT_CELLS_PER_NODE * ns:
         norder = _cell_order(nkeys, ncell)
     else:
         norder = np.argsort(nkeys, kind="stable")

@@ -515,6 +515,12 @@ class ContactRuntime:
         self._last_sort = cycle
         self.n_sorts += 1
 
+    def expire_lists(self) -> None:
+        """Rebuild the candidate lists at the next :meth:`add_forces` (lists put back
+        from a restart file of an older format, made for another re-sort bound). The
+        forces do not change: the lists only have to be complete."""
+        self._last_sort = -(1 << 62)
+
     def _threaded(self, p: _Pass, sweeps: int = 1) -> bool:
         """Use the threaded kernels for pass p. Per-cycle kernels (``sweeps=1``): p has
         parallel_min_rows active rows and numba more than one thread. Near filter and

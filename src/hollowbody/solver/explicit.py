@@ -261,6 +261,11 @@ def _resume(model, plan, state: State, outputs: RunOutputs, resume: tuple,  # no
             end_time: float, extra: dict) -> None:
     path, header, payload = resume
     restore(state, payload["state"])
+    if header.get("format", 0) < 3:
+        # contact lists of an older format: cut for the Euclidean re-sort bound
+        for obj in state.parts.values():
+            if hasattr(obj, "expire_lists"):  # the contacts
+                obj.expire_lists()
     prior = payload.get("restart_files", [])  # those still in the folder
     extra["restart_files"] = [f for f in prior if (outputs.out / f["file"]).is_file()]
     extra["resumed_from"] = {"file": path.name, "time_ms": header["time_ms"],

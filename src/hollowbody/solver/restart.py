@@ -32,8 +32,13 @@ from hollowbody import __version__
 from hollowbody.errors import UserInputError
 
 MAGIC = b"HOLLOWBODY-D3DUMP\n"
-#: 2: contacts carry their kinematic step limit; State its controlling contact
-FORMAT = 2
+#: 2: contacts carry their kinematic step limit; State its controlling contact.
+#: 3: contact lists made for the per-axis re-sort bound (their distance cut allows
+#: sqrt(3) margins); format 2 files are read and their contacts re-sort at once
+#: (explicit._resume), so that the lists they carry are never relied on.
+FORMAT = 3
+#: formats this version reads
+READABLE = (2, 3)
 _NAME = re.compile(r"^d3dump(\d+)$")
 
 
@@ -115,7 +120,7 @@ def read_dump(path: Path, model) -> tuple[dict, dict]:  # noqa: ANN001 - Model
     """
     path = Path(path)
     header = read_header(path)
-    if header.get("format") != FORMAT or header.get("version") != __version__:
+    if header.get("format") not in READABLE or header.get("version") != __version__:
         raise RestartError(f"{path}: written by hollowbody {header.get('version')} "
                            f"(format {header.get('format')}); this is {__version__} "
                            f"(format {FORMAT}): restart files are read by the version "

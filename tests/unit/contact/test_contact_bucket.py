@@ -83,18 +83,69 @@ def test_one_pass_buffer_overflow_and_hint_agree():
         np.testing.assert_array_equal(np.sort(c), np.sort(small[1]))
 
 
-def test_serial_and_threaded_lists_in_the_same_order():
+@pytest.mark.parametrize("grid", ["dense", "sparse"])
+@pytest.mark.parametrize("node_order", ["counting", "argsort"])
+def test_serial_and_threaded_lists_in_the_same_order(grid, node_order, monkeypatch):
     """The serial search walks the nodes cell by cell and gathers the rows back into
     node order; each node's list must be the threaded search's, entry for entry
-    (the grid's segment order), in both grid layouts and node-sort paths."""
+    (the grid's segment order), in both grid layouts and with both node orders (a
+    counting sort of the cells, or an argsort when the grid has far more cells than
+    nodes)."""
+    if node_order == "argsort":
+        monkeypatch.setattr(bucket, "_COUNT_CELLS_PER_NODE", 0)
+    if grid == "sparse":
+        monkeypatch.setattr(bucket, "_DENSE_CELLS", 0)
+        monkeypatch.setattr(bucket, "_DENSE_PER_PAIR", 0)
     rng = np.random.default_rng(7)
     x, seg = _random_mesh(rng, 500, 600, spread=12.0)
     nodes = rng.permutation(500)[:400].astype(np.int32)
     grow = rng.uniform(0.2, 2.5, size=600)
     ser = bucket_sort(x, nodes, seg, grow, parallel=False)
     par = bucket_sort(x, nodes, seg, grow, parallel=True)
+    assert ser[1].size > 0
     np.testing.assert_array_equal(ser[0], par[0])
     np.testing.assert_array_equal(ser[1], par[1])
+
+
+def test_near_filter_serial_and_threaded_equal_the_box_test():
+    """Near lists: the listed pairs whose current box (enlarged by grow) holds the
+    node, plus the node's held segment, in the far list's order; the serial filter
+    (no branches) and the threaded one give the same lists and the same set of
+    segments in them."""
+    from hollowbody.contact.nearlist import near_filter, near_filter_parallel
+
+    rng = np.random.default_rng(5)
+    x, seg = _random_mesh(rng, 300, 400, spread=10.0)
+    nodes = np.arange(300, dtype=np.int32)
+    ptr, cand = bucket_sort(x, nodes, seg, np.full(400, 2.0))
+    x = x + rng.normal(0.0, 0.3, x.shape)  # moved since the sort
+    grow = rng.uniform(0.0, 1.0, 400)
+    oseg = np.full(300, -1, np.int32)
+    held = rng.choice(300, 40, replace=False)
+    oseg[held] = cand[ptr[held]]  # some held segments (listed, maybe not near)
+    has = ptr[held + 1] > ptr[held]
+    oseg[held[~has]] = -1
+    sact = np.unique(cand).astype(np.int32)
+    lo, hi = np.zeros((400, 3)), np.zeros((400, 3))
+    bucket.segment_boxes(x, seg, grow, lo, hi)
+    want = []
+    for i in range(300):
+        row = cand[ptr[i]:ptr[i + 1]]
+        inside = np.all((lo[row] <= x[i]) & (x[i] <= hi[row]), axis=1) | (row == oseg[i])
+        want.append(row[inside])
+    out = []
+    for fn in (near_filter, near_filter_parallel):
+        nptr = np.zeros(301, np.int64)
+        ncand = np.empty(cand.size, np.int32)
+        nsact = np.zeros(400, np.int32)
+        m = fn(x, nodes, seg, grow, ptr, cand, oseg, sact, np.zeros((400, 3)),
+               np.zeros((400, 3)), nptr, ncand, np.zeros(400, np.int64), 1, nsact)
+        for i in range(300):
+            np.testing.assert_array_equal(ncand[nptr[i]:nptr[i + 1]], want[i])
+        out.append(nsact[:m].copy())
+    assert 0 < nptr[-1] < cand.size
+    np.testing.assert_array_equal(out[0], np.unique(np.concatenate(want)))
+    np.testing.assert_array_equal(out[1], out[0])
 
 
 def test_cell_order_is_a_stable_sort():

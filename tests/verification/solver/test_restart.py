@@ -197,6 +197,35 @@ def test_read_dump_checks_the_model(tmp_path):
         read_dump(dump, build_model(cube_and_plate(n=3)))
 
 
+def test_a_dump_of_the_previous_format_resumes_and_re_sorts(tmp_path, monkeypatch, reference):
+    """A format 2 dump (contact lists cut for the older, Euclidean re-sort bound) is
+    read; its contacts rebuild their lists in the first cycle after the resume, and
+    the run still ends as the uninterrupted one (the lists only have to be
+    complete)."""
+    from hollowbody.contact.runtime import ContactRuntime
+
+    ref_out, ref = reference
+    _interrupt_at(monkeypatch, 57)
+    _run(_deck(), tmp_path)
+    monkeypatch.undo()
+    dump = dump_files(tmp_path)[0]
+    data = dump.read_bytes()
+    assert b'"format": 3' in data
+    dump.write_bytes(data.replace(b'"format": 3', b'"format": 2', 1))
+    sorts = []
+    original = ContactRuntime._sort
+
+    def counting_sort(self, dt, cycle):
+        sorts.append(cycle)
+        original(self, dt, cycle)
+
+    monkeypatch.setattr(ContactRuntime, "_sort", counting_sort)
+    res = _run(_deck(), tmp_path, restart="newest")
+    assert res.status == "normal termination" and res.cycles == ref.cycles
+    assert sorts and sorts[0] == 58  # at once, not at the next interval or bound
+    _same_histories(ref_out, tmp_path)
+
+
 @pytest.mark.parametrize("structure", ["solid", "hollow"])
 def test_block_resumed_after_ctrl_c_continues_bit_for_bit(structure, tmp_path, monkeypatch):
     """The paper's block (hexahedra with MAT_181, or shell walls with MAT_024, self-contact
