@@ -143,6 +143,27 @@ def _lower_bound(a, v):
     return lo
 
 
+@njit(cache=True, inline="always")
+def _cell_range(key, skeys, cstart):
+    """(q0, q1): the range of grid cell ``key`` in the sorted segment list (dense grid:
+    cstart; sparse: a binary search of the sorted keys skeys)."""
+    if cstart.shape[0] > 0:
+        return cstart[key], cstart[key + 1]
+    q0 = _lower_bound(skeys, key)
+    q1 = q0
+    while q1 < skeys.shape[0] and skeys[q1] == key:
+        q1 += 1
+    return q0, q1
+
+
+@njit(cache=True, inline="always")
+def _excluded(s, i, nd, seg, mark):
+    """Segment s is left out for node row i (node nd): stamped in mark for it (its
+    exclusion list) or one of its corners."""
+    return (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd or seg[s, 2] == nd
+            or seg[s, 3] == nd)
+
+
 @njit(cache=True)
 def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs,
                  ex_ptr, ex_seg, ptr, out, fill, mark):
@@ -167,22 +188,13 @@ def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, 
         if 0 <= ci < dims[0] and 0 <= cj < dims[1] and 0 <= ck < dims[2]:
             for e in range(ex_ptr[i], ex_ptr[i + 1]):
                 mark[ex_seg[e]] = i
-            key = ci + dims[0] * (cj + dims[1] * ck)
-            if cstart.shape[0] > 0:  # dense grid: the cell's range directly
-                q = cstart[key]
-                q1 = cstart[key + 1]
-            else:
-                q = _lower_bound(skeys, key)
-                q1 = q
-                while q1 < skeys.shape[0] and skeys[q1] == key:
-                    q1 += 1
+            q, q1 = _cell_range(ci + dims[0] * (cj + dims[1] * ck), skeys, cstart)
             while q < q1:
                 s = ssegs[q]
                 q += 1
                 if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
                         and lo[s, 2] <= pz <= hi[s, 2]):
-                    if (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd
-                            or seg[s, 2] == nd or seg[s, 3] == nd):
+                    if _excluded(s, i, nd, seg, mark):
                         continue
                     if fill == 1:
                         out[base + n] = s
@@ -282,15 +294,8 @@ def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, or
         m = 0
         q0 = 0
         if key >= 0:
-            if cstart.shape[0] > 0:  # dense grid: the cell's range directly
-                q0 = cstart[key]
-                m = cstart[key + 1] - q0
-            else:
-                q0 = _lower_bound(skeys, key)
-                q1 = q0
-                while q1 < skeys.shape[0] and skeys[q1] == key:
-                    q1 += 1
-                m = q1 - q0
+            q0, q1 = _cell_range(key, skeys, cstart)
+            m = q1 - q0
         for j in range(m):
             s = ssegs[q0 + j]
             for k in range(3):
@@ -327,8 +332,7 @@ def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, or
                 w = n0
                 for q in range(n0, n):
                     s = ssegs[q0 + tmp[q]]
-                    if not (mark[s] == i or seg[s, 0] == nd or seg[s, 1] == nd
-                            or seg[s, 2] == nd or seg[s, 3] == nd):
+                    if not _excluded(s, i, nd, seg, mark):
                         tmp[w] = s
                         w += 1
                 n = w

@@ -53,6 +53,14 @@ def _boxes_of(j0, j1, x, seg, grow, sact, lo, hi):
         segment_box(sact[j], x, seg, grow, lo, hi)
 
 
+@njit(cache=True, inline="always")
+def _near(s, held, px, py, pz, lo, hi):
+    """Pair (node at p, segment s) is near: s is the node's held segment or its box
+    lo / hi holds p (bitwise operators: no branch)."""
+    return ((s == held) | ((lo[s, 0] <= px) & (px <= hi[s, 0]) & (lo[s, 1] <= py)
+                           & (py <= hi[s, 1]) & (lo[s, 2] <= pz) & (pz <= hi[s, 2])))
+
+
 @njit(cache=True)
 def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp, fill):
     """Near pairs of rows i0 <= i < i1 (a listed pair whose box holds the node, and
@@ -72,8 +80,7 @@ def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, sta
         held = oseg[i]
         for q in range(ptr[i], ptr[i + 1]):
             s = cand[q]
-            if s == held or (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
-                             and lo[s, 2] <= pz <= hi[s, 2]):
+            if _near(s, held, px, py, pz, lo, hi):
                 if fill != 0:
                     ncand[n] = s
                     mark[s] = stamp
@@ -100,8 +107,7 @@ def _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stam
         for q in range(ptr[i], ptr[i + 1]):
             s = cand[q]
             ncand[n] = s
-            n += ((s == held) | ((lo[s, 0] <= px) & (px <= hi[s, 0]) & (lo[s, 1] <= py)
-                                 & (py <= hi[s, 1]) & (lo[s, 2] <= pz) & (pz <= hi[s, 2])))
+            n += _near(s, held, px, py, pz, lo, hi)
         for q in range(n0, n):
             mark[ncand[q]] = stamp
         nptr[i + 1] = n
