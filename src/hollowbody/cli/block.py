@@ -42,6 +42,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="rounding radius of the cylinder's face edge in mm (default 5)")
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: long enough for the rebound)")
+    p.add_argument("--elform", type=int, choices=(1, 2), default=1,
+                   help="solid block element: 1 one-point with stiffness hourglass control "
+                        "(default), 2 fully integrated, no hourglass modes (slower)")
     p.add_argument("--friction", type=float, default=0.2,
                    help="impactor-tissue friction coefficient (default 0.2)")
     p.add_argument("--erode", action=argparse.BooleanOptionalAction, default=None,
@@ -109,7 +112,7 @@ def main(args: argparse.Namespace) -> int:
         cfg = BlockConfig(tissue=args.tissue, structure=args.structure, speed_kmh=args.speed,
                           mesh=args.mesh, impactor=args.impactor, edge_radius=args.edge_radius,
                           end_time=args.end_time, friction=args.friction, erode=args.erode,
-                          hollow_E=args.hollow_E, hollow_yield=args.hollow_yield,
+                          elform=args.elform, hollow_E=args.hollow_E, hollow_yield=args.hollow_yield,
                           hollow_etan=args.etan, thickness=args.thickness, cell=args.cell,
                           elements_per_edge=args.elements_per_edge,
                           imperfection=args.imperfection,

@@ -8,7 +8,10 @@ hourglass control (viscous IHQ 1-3, stiffness IHQ 4-5), the Belytschko-Bindeman
 assumed-strain stiffness (IHQ 6 incremental, IHQ 7 total; IHQ 8 and above run as
 IHQ 6 with a warning)
 and LS-DYNA bulk viscosity; degenerate wedges and
-tetrahedra run through the same kernel (see docs/elements.md).
+tetrahedra run through the same kernel (see docs/elements.md); or the fully
+integrated, selectively reduced hexahedron (ELFORM 2,
+:mod:`hollowbody.elements.hex8_full_kernels`: no hourglass modes, no hourglass
+control).
 Materials: the laws of :data:`hollowbody.materials.solid_laws.SOLID_LAWS`
 (*MAT_ELASTIC ``"elastic"``, *MAT_SIMPLIFIED_RUBBER ``"rubber181"``); one
 element kernel per law (:func:`~hollowbody.elements.hex8_solid_kernels.make_hex8_kernel`).
@@ -35,6 +38,7 @@ from hollowbody.elements.hex8_kinematics import (
     canonical_connectivity,
     hex8_gradients,
 )
+from hollowbody.elements.hex8_full_kernels import gauss_gradients, make_hex8_full_kernel
 from hollowbody.elements.hex8_solid_kernels import (
     H_G,
     H_IHQ,
@@ -54,6 +58,9 @@ from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 CHUNK = 256
 #: Groups at least this large use the parallel node gather (when > 1 thread).
 GATHER_MIN_ELEMENTS = 2048
+#: *SECTION_SOLID ELFORM values run by the fully integrated kernel (-1 and -2,
+#: LS-DYNA's variants for poor aspect ratios, run as 2 with a warning).
+FULL_ELFORMS = (2, -1, -2)
 
 
 def reference_half_lengths(conn: np.ndarray, x0: np.ndarray) -> np.ndarray:
@@ -78,7 +85,9 @@ class SolidGroupRuntime:
     pid; elem_ids (e,) int64; conn (e, 8) int32 as in the deck; n_elem;
     shape (e,) int8 (hex8_kinematics.SHAPE_*); alive (e,) bool (False = eroded);
     stress (e, 6) float64 GPa Cauchy, Voigt xx yy zz xy yz zx (without the
-    bulk-viscosity pressure); volume0, volume (e,) mm^3 initial / current;
+    bulk-viscosity pressure; ELFORM 2: the volume mean of the points' stresses
+    ``stress_gp`` (8e, 6), else an empty array); elform 1 or 2;
+    volume0, volume (e,) mm^3 initial / current;
     mass (e,) kg = density * volume0; dt_elem (e,) ms critical step of the last
     call (unscaled, inf for dead elements); internal_energy, hourglass_energy
     J cumulative (see module docstring). The law's history arrays are
@@ -91,10 +100,10 @@ class SolidGroupRuntime:
     #: element forces f^n, read by the next call (energy of the step).
     STATE_FIELDS: tuple[str, ...] = (
         "alive", "stress", "volume", "dt_elem", "_c", "_hgstate", "_hgdisp", "_hgmod",
-        "_fwork", "internal_energy", "hourglass_energy") + HISTORY_FIELDS
+        "_fwork", "internal_energy", "hourglass_energy", "stress_gp") + HISTORY_FIELDS
 
     def __init__(self, group: SolidGroup, material: MaterialDef, hourglass: HourglassDef,
-                 curves: dict[int, Curve], node_x0: np.ndarray) -> None:
+                 curves: dict[int, Curve], node_x0: np.ndarray, elform: int = 1) -> None:
         self.pid = int(group.pid)
         self.elem_ids = np.asarray(group.elem_ids, dtype=np.int64)
         self.conn = np.ascontiguousarray(group.conn, dtype=np.int32)
@@ -126,10 +135,18 @@ class SolidGroupRuntime:
         self._law = law
         self._params = law.solid_params(material, curves)
         c0 = law.solid_wave_speed0(self._params)
-        history = law.solid_history(self._params, e)
+        self.elform = 2 if int(elform) in FULL_ELFORMS else 1
+        if int(elform) in (-1, -2):
+            warnings.warn(f"part {self.pid}: solid ELFORM {int(elform)} runs as ELFORM 2 "
+                          "(fully integrated, selectively reduced)", UserWarning, stacklevel=2)
+        full = self.elform == 2
+        # per-point arrays of the fully integrated element: rows 8e .. 8e + 7
+        history = law.solid_history(self._params, 8 * e if full else e)
         for name in HISTORY_FIELDS:
             setattr(self, name, history.get(name, np.zeros(0)))
-        self._kernel = make_hex8_kernel(law)
+        self.stress_gp = np.zeros((8 * e if full else 0, 6))
+        self._b0g = gauss_gradients(self._conn_k, x0)[0] if full else np.zeros((0, 8, 3))
+        self._kernel = make_hex8_full_kernel(law) if full else make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
         if ihq > 7:
@@ -177,9 +194,15 @@ class SolidGroupRuntime:
         # (contact zone, eigen-solver sweeps), a static split leaves threads idle
         old_chunk = numba.set_parallel_chunksize(1)
         # argument groups built per call, so a rebound attribute is always the one used
-        geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds, self._axes0)
-        state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
-                 self._hgmod, self._fwork, self.dt_elem, self._c)
+        if self.elform == 2:
+            geom = (self._conn_k, self._lfac, self.volume0, self._b0g, self._bounds)
+            state = (self.alive, self.stress, self.stress_gp, self.volume, self._fwork,
+                     self.dt_elem, self._c)
+        else:
+            geom = (self._conn_k, self._lfac, self.volume0, self._b0, self._bounds,
+                    self._axes0)
+            state = (self.alive, self.stress, self.volume, self._hgstate, self._hgdisp,
+                     self._hgmod, self._fwork, self.dt_elem, self._c)
         history = tuple(getattr(self, name) for name in self._law.HISTORY_FIELDS)
         self._kernel(x, v, float(dt), geom, state, self._params, history, self._hg, out)
         numba.set_parallel_chunksize(old_chunk)
@@ -204,6 +227,9 @@ class SolidGroupRuntime:
         self._hgstate[idx] = 0.0
         if self._hgdisp.shape[0] == self.n_elem:
             self._hgdisp[idx] = 0.0
+        if self.elform == 2:  # the points of the eroded elements
+            self.stress_gp.reshape(-1, 8, 6)[idx] = 0.0
+            idx = (8 * idx[:, None] + np.arange(8)).ravel()
         self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), idx)
         self.dt_elem[idx] = np.inf
 

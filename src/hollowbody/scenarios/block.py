@@ -84,6 +84,9 @@ class BlockConfig:
     erode: bool | None = None  # None: off for solid blocks, on for hollow ones
     hourglass_ihq: int = 4
     hourglass_qh: float = 0.05
+    #: *SECTION_SOLID ELFORM of the solid block: 1 one-point with the hourglass
+    #: control above, 2 fully integrated (no hourglass modes; about 5x the cost)
+    elform: int = 1
     # hollow structure (structure="hollow"); None -> the paper's fit for the tissue
     hollow_E: float | None = None  # MPa
     hollow_yield: float | None = None  # MPa
@@ -127,6 +130,8 @@ class BlockConfig:
             raise ValueError("mesh size must be positive")
         if not 0.0 <= self.edge_radius < 0.5 * IMPACTOR_DIAMETER:
             raise ValueError("edge radius must be in [0, 45) mm")
+        if self.elform not in (1, 2):
+            raise ValueError(f"solid ELFORM must be 1 or 2 (got {self.elform})")
         if self.wall_hourglass_ihq not in (0, 1, 2, 3, 4, 5) or self.wall_hourglass_qh < 0.0:
             raise ValueError("wall hourglass IHQ must be 0 (none) or 1-5 and its QM >= 0 "
                              f"(got {self.wall_hourglass_ihq}, {self.wall_hourglass_qh:g})")
@@ -278,7 +283,7 @@ def _add_solid_block(deck, cfg: BlockConfig):
     deck.add_nodes(ids, xb)
     deck.add_solids(np.arange(1, cb.shape[0] + 1), PID_TISSUE, ids[cb])
     deck.add(Part(pid=PID_TISSUE, secid=1, mid=1, hgid=1, title=f"{cfg.tissue} (solid)"))
-    deck.add(SectionSolid(secid=1))
+    deck.add(SectionSolid(secid=1, elform=cfg.elform))
     deck.add(MatSimplifiedRubber(mid=1, ro=t.density, km=t.bulk_modulus, lcid=1))
     deck.add(DefineCurve(lcid=1, points=np.column_stack([t.strain, t.stress]).tolist(),
                          title=f"{cfg.tissue}: engineering stress [GPa] vs strain"))

@@ -121,7 +121,9 @@ def assemble(model: Model) -> Assembly:
             raise DeckError(f"material {mat.mid} ({mat.keyword or mat.kind}) of part {g.pid} "
                             "is not available for solid elements", mat.source.file,
                             mat.source.line, mat.keyword or None)
-        rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0)
+        sec = model.sections.get(model.parts[g.pid].secid)
+        rt = SolidGroupRuntime(g, mat, model.hourglass_of(g.pid), model.curves, x0,
+                               elform=sec.elform if sec is not None else 1)
         # the volumetric modes of free faces: hollowbody.elements.solid_step_factor
         rt.step_factor = volumetric_step_factor(mat.kind, mat.params, model.curves,
                                                 min_axes=group_min_axes(g.conn, g_axes))
