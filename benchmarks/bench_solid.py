@@ -9,7 +9,8 @@ the split between the element kernel and the two force-assembly variants
 (serial scatter, parallel node gather).
 
 The hourglass forms are compared on MAT_181 (IHQ 1, 4, 6, 7) and MAT_ELASTIC
-(IHQ 4, 6); ``--cases`` picks some of them by label.
+(IHQ 4, 6), and the fully integrated element (ELFORM 2, no hourglass control) on
+both; ``--cases`` picks some of them by label.
 
 Usage: python benchmarks/bench_solid.py [--calls 50] [--repeats 9] [--threads 1 2]
        [--cases "hex + MAT_181, IHQ=4" "hex + MAT_181, IHQ=6"]
@@ -35,7 +36,8 @@ MUSCLE_MPA = np.array([-11.8, -4.15, -1.90, -0.987, -0.543, -0.299, -0.153, -0.0
                        0.0419, 0.0716, 0.093, 0.120, 0.139, 0.148])
 
 
-def make_runtime(kind: str, ihq: int = 1) -> tuple[SolidGroupRuntime, np.ndarray]:
+def make_runtime(kind: str, ihq: int = 1,
+                 elform: int = 1) -> tuple[SolidGroupRuntime, np.ndarray]:
     x0, conn = block_mesh((40, 40, 32), (300.0, 300.0, 240.0))
     group = SolidGroup(1, np.arange(1, conn.shape[0] + 1, dtype=np.int64), conn)
     curves = {}
@@ -45,7 +47,7 @@ def make_runtime(kind: str, ihq: int = 1) -> tuple[SolidGroupRuntime, np.ndarray
         mat = MaterialDef(2, "rubber181", 1e-6, {"KM": 1.0, "MU": 0.1, "G": 0.0, "SIGF": 0.0,
                                                  "SGL": 1.0, "SW": 1.0, "ST": 1.0, "LCID": 1})
         curves = {1: Curve(1, MUSCLE_STRAIN, MUSCLE_MPA * 1e-3)}
-    rt = SolidGroupRuntime(group, mat, HourglassDef(0, ihq=ihq), curves, x0)
+    rt = SolidGroupRuntime(group, mat, HourglassDef(0, ihq=ihq), curves, x0, elform=elform)
     return rt, x0
 
 
@@ -65,9 +67,10 @@ def time_calls(fn, calls: int, repeats: int) -> tuple[float, float]:
     return statistics.median(samples), min(samples)
 
 
-def bench(kind: str, ihq: int, threads: int, calls: int, repeats: int) -> dict[str, float]:
+def bench(kind: str, ihq: int, threads: int, calls: int, repeats: int,
+          elform: int = 1) -> dict[str, float]:
     numba.set_num_threads(threads)
-    rt, x0 = make_runtime(kind, ihq)
+    rt, x0 = make_runtime(kind, ihq, elform)
     rng = np.random.default_rng(0)
     v = rng.normal(scale=0.1, size=x0.shape)
     dt = 1e-4
@@ -115,7 +118,9 @@ def main() -> None:
              ("rubber181", 1, "hex + MAT_181, IHQ=1"),
              ("rubber181", 4, "hex + MAT_181, IHQ=4"),
              ("rubber181", 6, "hex + MAT_181, IHQ=6"),
-             ("rubber181", 7, "hex + MAT_181, IHQ=7")]
+             ("rubber181", 7, "hex + MAT_181, IHQ=7"),
+             ("elastic", 0, "hex + MAT_ELASTIC, ELFORM 2"),
+             ("rubber181", 0, "hex + MAT_181, ELFORM 2")]
     if args.cases:
         unknown = set(args.cases) - {c[2] for c in cases}
         if unknown:
@@ -123,7 +128,7 @@ def main() -> None:
         cases = [c for c in cases if c[2] in args.cases]
     for kind, ihq, label in cases:
         for t in threads:
-            r = bench(kind, ihq, t, args.calls, args.repeats)
+            r = bench(kind, max(ihq, 1), t, args.calls, args.repeats, 2 if ihq == 0 else 1)
             results[(label, t)] = r
             print(f"{label:28s} {t:3d} {r['full']:7.3f} {r['best']:7.3f} {r['kernel']:7.3f} "
                   f"{r['scatter']:8.3f} {r['gather']:7.3f}")

@@ -139,6 +139,9 @@ class SolidGroupRuntime:
         if int(elform) in (-1, -2):
             warnings.warn(f"part {self.pid}: solid ELFORM {int(elform)} runs as ELFORM 2 "
                           "(fully integrated, selectively reduced)", UserWarning, stacklevel=2)
+        elif int(elform) not in (0, 1, 2, 10):  # 10: the one-point tetrahedron
+            warnings.warn(f"part {self.pid}: solid ELFORM {int(elform)} is not available; it "
+                          "runs as ELFORM 1 (one-point)", UserWarning, stacklevel=2)
         full = self.elform == 2
         # per-point arrays of the fully integrated element: rows 8e .. 8e + 7
         history = law.solid_history(self._params, 8 * e if full else e)

@@ -154,6 +154,11 @@ def _assign(obj: object, name: str, value: object) -> None:
         setattr(obj, name, copy.deepcopy(value))
 
 
+def _empty(obj: object, name: str) -> bool:
+    value = getattr(obj, name, None)
+    return isinstance(value, np.ndarray) and value.size == 0
+
+
 def restore(state: State, snap: dict[str, object]) -> None:
     """Put a :func:`snapshot` back into ``state`` and its parts (same model and plan).
 
@@ -165,7 +170,10 @@ def restore(state: State, snap: dict[str, object]) -> None:
         raise ValueError(f"the saved state has other parts ({', '.join(sorted(missing))})")
     for key, obj in state.parts.items():
         saved = parts[key]
-        if set(saved) != set(_fields(obj)):
+        # a field added in a later version that holds nothing in this run (an empty
+        # array) may be missing from a dump written before it
+        absent = {name for name in set(_fields(obj)) - set(saved) if _empty(obj, name)}
+        if set(saved) | absent != set(_fields(obj)):
             raise ValueError(f"the saved state of {key} has other fields")
     for name in STATE_ARRAYS:
         cur, value = getattr(state, name), own[name]
