@@ -87,3 +87,22 @@ def test_wall_hourglass_option_sets_the_walls_hourglass():
         assert hg.ihq == 4 and hg.qm == pytest.approx(0.1)
     with pytest.raises(ValueError, match="wall hourglass"):
         BlockConfig(structure="hollow", wall_hourglass_ihq=7)
+
+
+def test_solid_block_element_formulation():
+    """--elform 2 writes ELFORM 2 into the deck's solid section, the default stays 1, and
+    anything else is refused."""
+    for elform in (1, 2):
+        model = build_model(build_block_deck(BlockConfig(mesh=30.0, elform=elform)))
+        assert [s.elform for s in model.sections.values() if s.kind == "solid"] == [elform]
+    with pytest.raises(ValueError, match="ELFORM must be 1 or 2"):
+        BlockConfig(elform=3)
+
+
+def test_block_cli_refuses_an_unknown_elform(capsys):
+    from hollowbody.cli.main import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["block", "--elform", "3", "--dry-run"])
+    assert exc.value.code == 2
+    assert "--elform" in capsys.readouterr().err
