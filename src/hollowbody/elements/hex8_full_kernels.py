@@ -164,7 +164,7 @@ def gauss_gradients(conn: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.nda
 
 @njit(cache=True, inline="always", fastmath={"contract"})
 def _add_deviatoric(det, s0, s1, s2, s3, s4, s5, bg, fwork, e):
-    """fwork[e, a] -= det s b_a for the trace-free part of (s0..s5) (kN); returns its mean stress."""
+    """fwork[e, a] -= det s b_a, s the trace-free part of (s0..s5) (kN); returns the mean stress."""
     m = (s0 + s1 + s2) * _THIRD
     d0, d1, d2 = s0 - m, s1 - m, s2 - m
     for a in range(8):

@@ -33,12 +33,12 @@ import numba
 import numpy as np
 
 from hollowbody.elements.assembly import NodeGather, scatter_add
+from hollowbody.elements.hex8_full_kernels import gauss_gradients, make_hex8_full_kernel
 from hollowbody.elements.hex8_kinematics import (
     SHAPE_TET,
     canonical_connectivity,
     hex8_gradients,
 )
-from hollowbody.elements.hex8_full_kernels import gauss_gradients, make_hex8_full_kernel
 from hollowbody.elements.hex8_solid_kernels import (
     H_G,
     H_IHQ,
