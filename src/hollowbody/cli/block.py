@@ -153,14 +153,20 @@ def main(args: argparse.Namespace) -> int:
     return exit_code(s["status"])
 
 
+def _variant(cfg, structure: str):  # noqa: ANN001, ANN202 - BlockConfig
+    """The solid or hollow block of ``cfg`` (the element formulation is the solid's)."""
+    from dataclasses import replace
+
+    return replace(cfg, structure=structure, elform=cfg.elform if structure == "solid" else 1)
+
+
 def _dry_run(cfg, folders: tuple[Path, ...], engine) -> int:  # noqa: ANN001
     """Write each run's deck and print the plan of its run."""
-    from dataclasses import replace
 
     from hollowbody.scenarios.block import write_block_deck
 
     for folder in folders:
-        c = replace(cfg, structure=folder.name) if len(folders) > 1 else cfg
+        c = _variant(cfg, folder.name) if len(folders) > 1 else cfg
         folder.mkdir(parents=True, exist_ok=True)
         deck = write_block_deck(c, folder)
         if engine is None:
@@ -173,7 +179,6 @@ def _dry_run(cfg, folders: tuple[Path, ...], engine) -> int:  # noqa: ANN001
 
 def _compare(cfg, out: Path, args: argparse.Namespace, engine=None) -> int:  # noqa: ANN001
     """Solid and hollow at the same speed, curves overlaid in ``out/compare.png``."""
-    from dataclasses import replace
 
     from hollowbody.cli.run import exit_code
     from hollowbody.curves.plot import plot
@@ -181,7 +186,7 @@ def _compare(cfg, out: Path, args: argparse.Namespace, engine=None) -> int:  # n
 
     results = {}
     for structure in ("solid", "hollow"):
-        c = replace(cfg, structure=structure)
+        c = _variant(cfg, structure)
         results[structure] = block_impact(c, out / structure, vtk=args.vtk,
                                           quiet=args.quiet, engine=engine)
     plot([r.curve for r in results.values()], out / "compare.png",

@@ -14,9 +14,10 @@ Formulation (our own, after the selective-reduced integration of Hughes, IJNME
 * the law's stress is evaluated at the 2 x 2 x 2 Gauss points
   ``xi_g = +-1/sqrt(3)`` (weights 1), each with its own deformation gradient
   ``F_g = sum_a x_a (x) B0_ga`` (reference gradients at the point), velocity
-  gradient ``L_g = sum_a v_a (x) B_ga`` (current gradients at the point, taken
-  to the mid-step configuration as for the one-point element), Hughes-Winget
-  rotation, stress and material history;
+  gradient ``L_g = sum_a v_a (x) B_ga`` (current gradients at the point) with its
+  volumetric part replaced by the element's (``tr L_g -> tr L``, so a rate law's
+  pressure is the same at every point), taken to the mid-step configuration as
+  for the one-point element, Hughes-Winget rotation, stress and material history;
 * the mean stress is taken over the element: its deviatoric part is integrated
   at the eight points, its trace (pressure) with the one-point rule, i.e. the
   volume-weighted mean of the points' traces acts with the element's uniform
@@ -30,7 +31,9 @@ Formulation (our own, after the selective-reduced integration of Hughes, IJNME
   ``q`` the bulk viscosity of the element;
 * no hourglass forces (the element's only zero-energy modes are rigid motions);
 * time step, wave speed and bulk viscosity as for the one-point element, with
-  the largest of the points' wave speeds.
+  the largest of the points' wave speeds;
+* a point whose det J <= 0 counts as a negative volume (the element's volume is
+  reported as that det J): the run ends, or erosion deletes the element.
 
 Arrays: e elements, the points of element e are rows ``8 e .. 8 e + 7`` of the
 per-point arrays (reference gradients b0g (8e, 8, 3) 1/mm, stress_gp (8e, 6)
@@ -188,7 +191,8 @@ def make_hex8_full_kernel(law: ModuleType) -> Callable[..., None]:
     * geom = (conn (e, 8) int32, lfac (e,), volume0 (e,) mm^3, b0g (8e, 8, 3) 1/mm
       reference gradients at the points, bounds (nchunk + 1,) int64);
     * state = (alive (e,) bool, stress (e, 6) GPa out (volume mean), stress_gp
-      (8e, 6) GPa in/out, volume (e,) mm^3 out, fwork (e, 8, 3) kN in f^n / out
+      (8e, 6) GPa in/out, volume (e,) mm^3 out (the smallest point det J where it is
+      <= 0: an inverted point counts as a negative volume), fwork (e, 8, 3) kN in f^n / out
       f^{n+1}, dt_elem (e,) ms out, c_elem (e,) mm/ms out);
     * params, history: the law's tuples, history arrays with 8e rows;
     * hg (N_HG,) float64: only Q1, Q2 (bulk viscosity) are read;
@@ -214,7 +218,8 @@ def make_hex8_full_kernel(law: ModuleType) -> Callable[..., None]:
             xe = np.empty((8, 3))
             ve = np.empty((8, 3))
             bt = np.empty((8, 3))
-            bg = np.empty((8, 3))
+            bgs = np.empty((8, 8, 3))
+            dets = np.empty(8)
             lg = np.empty((3, 3))
             lm = np.empty((3, 3))
             rot = np.empty((3, 3))
@@ -232,21 +237,22 @@ def make_hex8_full_kernel(law: ModuleType) -> Callable[..., None]:
                     dt_elem[e] = np.inf
                     continue
                 vol = _kinematics(e, conn, x, v, dt, xe, ve, bt, lg, lm, rot)
-                volume[e] = vol
                 w_old = _power(ve, fwork, e)
                 _zero(fwork, e)
-                bad = vol <= 0.0
-                if not bad:
+                # an inverted point counts as a negative volume (its det J is reported)
+                vmin = vol
+                if vol > 0.0:
                     for p in range(8):
-                        if _point_gradients(xe, p, bg, jm) <= 0.0:
-                            bad = True
-                            break
-                if bad:
+                        dets[p] = _point_gradients(xe, p, bgs[p], jm)
+                        vmin = min(vmin, dets[p])
+                volume[e] = vmin
+                if vmin <= 0.0:
                     if ineg < 0:
                         ineg = e
                     eint -= 0.5 * dt * w_old
                     dt_elem[e] = np.inf
                     continue
+                trl = lg[0, 0] + lg[1, 1] + lg[2, 2]
                 l = vol ** _THIRD
                 inv_vol = 1.0 / vol
                 pm = 0.0
@@ -254,8 +260,15 @@ def make_hex8_full_kernel(law: ModuleType) -> Callable[..., None]:
                 rho = 0.0
                 a0 = a1 = a2 = a3 = a4 = a5 = 0.0
                 for p in range(8):
-                    det = _point_gradients(xe, p, bg, jm)
+                    det = dets[p]
+                    bg = bgs[p]
                     velocity_gradient(ve, bg, lgp)
+                    # the element's volumetric rate at every point (selective reduction
+                    # of the rate too: the points' pressures of a rate law stay equal)
+                    dv = (trl - lgp[0, 0] - lgp[1, 1] - lgp[2, 2]) * _THIRD
+                    lgp[0, 0] += dv
+                    lgp[1, 1] += dv
+                    lgp[2, 2] += dv
                     midpoint_velocity_gradient(lgp, dt)
                     hughes_winget(lgp, dt, rgp)
                     r = 8 * e + p

@@ -52,15 +52,12 @@ from hollowbody.elements.hex8_solid_kernels import (
 from hollowbody.elements.time_step import element_time_steps
 from hollowbody.errors import DeckError
 from hollowbody.materials.solid_laws import HISTORY_FIELDS, SOLID_LAWS
-from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
+from hollowbody.model.model import FULL_ELFORMS, Curve, HourglassDef, MaterialDef, SolidGroup
 
 #: Elements per chunk of the parallel element loop.
 CHUNK = 256
 #: Groups at least this large use the parallel node gather (when > 1 thread).
 GATHER_MIN_ELEMENTS = 2048
-#: *SECTION_SOLID ELFORM values run by the fully integrated kernel (-1 and -2,
-#: LS-DYNA's variants for poor aspect ratios, run as 2 with a warning).
-FULL_ELFORMS = (2, -1, -2)
 
 
 def reference_half_lengths(conn: np.ndarray, x0: np.ndarray) -> np.ndarray:
@@ -148,7 +145,16 @@ class SolidGroupRuntime:
         for name in HISTORY_FIELDS:
             setattr(self, name, history.get(name, np.zeros(0)))
         self.stress_gp = np.zeros((8 * e if full else 0, 6))
-        self._b0g = gauss_gradients(self._conn_k, x0)[0] if full else np.zeros((0, 8, 3))
+        self._b0g = np.zeros((0, 8, 3))
+        if full:
+            self._b0g, jac0 = gauss_gradients(self._conn_k, x0)
+            if e and np.any(jac0 <= 0.0):
+                i = int(np.nonzero((jac0 <= 0.0).any(axis=1))[0][0])
+                raise DeckError(f"solid element {int(self.elem_ids[i])} of part {self.pid} "
+                                "(ELFORM 2) has a Gauss point with zero or negative Jacobian "
+                                "in its initial shape (a corner inverted or collapsed); "
+                                "check its node order and shape, or use ELFORM 1",
+                                material.source.file, None, "ELEMENT_SOLID")
         self._kernel = make_hex8_full_kernel(law) if full else make_hex8_kernel(law)
 
         ihq = int(hourglass.ihq) if hourglass.ihq else 1
@@ -230,10 +236,11 @@ class SolidGroupRuntime:
         self._hgstate[idx] = 0.0
         if self._hgdisp.shape[0] == self.n_elem:
             self._hgdisp[idx] = 0.0
-        if self.elform == 2:  # the points of the eroded elements
-            self.stress_gp.reshape(-1, 8, 6)[idx] = 0.0
-            idx = (8 * idx[:, None] + np.arange(8)).ravel()
-        self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), idx)
+        rows = idx
+        if self.elform == 2:  # the history rows are the eroded elements' points
+            rows = (8 * idx[:, None] + np.arange(8)).ravel()
+            self.stress_gp[rows] = 0.0
+        self._law.solid_erode(tuple(getattr(self, n) for n in self._law.HISTORY_FIELDS), rows)
         self.dt_elem[idx] = np.inf
 
     def wave_speed(self) -> np.ndarray:

@@ -75,6 +75,11 @@ class MaterialDef:
     source: Source = field(default_factory=Source)
 
 
+#: *SECTION_SOLID ELFORM values run by the fully integrated hexahedron (-1 and -2,
+#: LS-DYNA's variants for poor aspect ratios, run as 2 with a warning).
+FULL_ELFORMS = (2, -1, -2)
+
+
 @dataclass
 class SectionDef:
     """*SECTION_SOLID, *SECTION_SHELL or *SECTION_BEAM.

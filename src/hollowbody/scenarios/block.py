@@ -132,6 +132,9 @@ class BlockConfig:
             raise ValueError("edge radius must be in [0, 45) mm")
         if self.elform not in (1, 2):
             raise ValueError(f"solid ELFORM must be 1 or 2 (got {self.elform})")
+        if self.elform != 1 and self.structure == "hollow":
+            raise ValueError("the element formulation (ELFORM) is that of the solid block; "
+                             "the hollow block has no solid elements")
         if self.wall_hourglass_ihq not in (0, 1, 2, 3, 4, 5) or self.wall_hourglass_qh < 0.0:
             raise ValueError("wall hourglass IHQ must be 0 (none) or 1-5 and its QM >= 0 "
                              f"(got {self.wall_hourglass_ihq}, {self.wall_hourglass_qh:g})")

@@ -30,6 +30,7 @@ import numpy as np
 
 from hollowbody import __version__
 from hollowbody.errors import UserInputError
+from hollowbody.model.model import FULL_ELFORMS
 
 MAGIC = b"HOLLOWBODY-D3DUMP\n"
 #: 2: contacts carry their kinematic step limit; State its controlling contact.
@@ -48,13 +49,19 @@ class RestartError(UserInputError):
 
 def fingerprint(model) -> str:  # noqa: ANN001 - Model
     """SHA-256 (hex) of what identifies a model: node ids and coordinates, element
-    ids and connectivities per part, part materials' kinds. Controls (end time,
+    ids and connectivities per part, part materials' kinds, fully integrated solid
+    sections. Controls (end time,
     erosion, output intervals) are not in it: they may change on a restart."""
     h = hashlib.sha256()
     for a in (model.node_ids, model.node_x0):
         h.update(np.ascontiguousarray(a).tobytes())
     for g in list(model.solid_groups) + list(model.shell_groups):
         h.update(f"part {g.pid} {model.material_of(g.pid).kind}".encode())
+        sec = model.sections.get(model.parts[g.pid].secid) if g.pid in model.parts else None
+        if sec is not None and sec.kind == "solid" and sec.elform in FULL_ELFORMS:
+            # the fully integrated element keeps other state (ELFORM 1 models keep
+            # the fingerprint they had before it existed)
+            h.update(b" fully integrated")
         h.update(np.ascontiguousarray(g.elem_ids, dtype=np.int64).tobytes())
         h.update(np.ascontiguousarray(g.conn, dtype=np.int64).tobytes())
     return h.hexdigest()

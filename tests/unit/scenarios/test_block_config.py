@@ -97,6 +97,8 @@ def test_solid_block_element_formulation():
         assert [s.elform for s in model.sections.values() if s.kind == "solid"] == [elform]
     with pytest.raises(ValueError, match="ELFORM must be 1 or 2"):
         BlockConfig(elform=3)
+    with pytest.raises(ValueError, match="hollow block has no solid elements"):
+        BlockConfig(structure="hollow", elform=2)
 
 
 def test_block_cli_refuses_an_unknown_elform(capsys):
@@ -106,3 +108,16 @@ def test_block_cli_refuses_an_unknown_elform(capsys):
         main(["block", "--elform", "3", "--dry-run"])
     assert exc.value.code == 2
     assert "--elform" in capsys.readouterr().err
+
+
+def test_block_compare_dry_run_with_elform_2_keeps_it_for_the_solid_only(tmp_path):
+    from hollowbody.cli.main import main
+    from hollowbody.io.keyword import read_deck
+
+    out = tmp_path / "cmp"
+    assert main(["block", "--compare", "--elform", "2", "--mesh", "30", "--dry-run",
+                 "--out", str(out)]) == 0
+    solid = build_model(read_deck(out / "solid" / "deck.k"))
+    assert [s.elform for s in solid.sections.values() if s.kind == "solid"] == [2]
+    hollow = build_model(read_deck(out / "hollow" / "deck.k"))
+    assert not hollow.solid_groups
