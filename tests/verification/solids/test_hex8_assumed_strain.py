@@ -29,6 +29,7 @@ from hollowbody.elements.hex8_kinematics import HG_BASE
 from hollowbody.elements.solid_group import SolidGroupRuntime
 from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import HourglassDef, MaterialDef, SolidGroup
+from hollowbody.testing.solids import forces_from_rest, stiffness
 
 E_MOD = 0.2  # GPa
 
@@ -40,28 +41,6 @@ def elastic(nu: float, e_mod: float = E_MOD) -> MaterialDef:
 def runtime(x0, conn, mat, ihq=6, qm=1.0):
     g = SolidGroup(1, np.arange(len(conn)), conn)
     return SolidGroupRuntime(g, mat, HourglassDef(0, ihq=ihq, qm=qm, q1=0.0, q2=0.0), {}, x0)
-
-
-def forces_from_rest(rt: SolidGroupRuntime, x0: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """Nodal forces (kN) after one step of displacement u (mm) from rest, dt = 1 ms."""
-    rt.stress[:] = 0.0
-    rt._hgstate[:] = 0.0
-    rt._hgdisp[:] = 0.0
-    rt._fwork[:] = 0.0
-    f = np.zeros_like(x0)
-    rt.add_forces(x0 + u, u.copy(), 1.0, f)
-    return f
-
-
-def stiffness(rt: SolidGroupRuntime, x0: np.ndarray, eps: float = 1e-7) -> np.ndarray:
-    """K (3n, 3n) kN/mm by columns, ``f = -K u``."""
-    n = x0.size
-    k = np.zeros((n, n))
-    for j in range(n):
-        u = np.zeros(n)
-        u[j] = eps
-        k[:, j] = -forces_from_rest(rt, x0, u.reshape(-1, 3)).ravel() / eps
-    return 0.5 * (k + k.T)
 
 
 def rotation(seed: int) -> np.ndarray:

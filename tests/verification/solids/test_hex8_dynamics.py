@@ -27,6 +27,7 @@ from hollowbody.model.model import (
 )
 from hollowbody.testing.engine import EngineRun
 from hollowbody.testing.models import PartSpec, assemble_model
+from hollowbody.testing.solids import initial_velocity
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
                           0.1, 0.2, 0.3, 0.5, 0.75, 1.0])
@@ -91,17 +92,6 @@ def test_dilatational_wave_speed_in_confined_column():
     assert c_num == pytest.approx(c, rel=0.02)
     # half-amplitude arrival of a step front in a lumped-mass chain: within 2 elements
     assert abs(stations[150] - 150 * h / c) < 2.0 * h / c
-
-
-def initial_velocity(x):
-    """Smooth, non-rigid velocity field (bending + torsion + breathing), mm/ms."""
-    lx = x.max(axis=0)
-    s = np.sin(math.pi * x[:, 2] / lx[2])
-    v = np.zeros_like(x)
-    v[:, 0] = 0.02 * s + 0.01 * (x[:, 1] - lx[1] / 2) * x[:, 2] / lx[2]
-    v[:, 1] = -0.01 * (x[:, 0] - lx[0] / 2) * x[:, 2] / lx[2]
-    v[:, 2] = 0.01 * (x[:, 2] / lx[2] - 0.5)
-    return v
 
 
 @pytest.mark.parametrize("ihq", [4, 0])

@@ -36,6 +36,7 @@ from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 from hollowbody.testing.engine import EngineRun
 from hollowbody.testing.models import PartSpec, assemble_model
+from hollowbody.testing.solids import initial_velocity, stiffness
 
 E_MOD = 0.2  # GPa
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -60,27 +61,6 @@ def runtime(x0, conn, mat, elform=2, curves=None):
     g = SolidGroup(1, np.arange(len(conn)), conn)
     hg = HourglassDef(0, ihq=1, qm=0.0, q1=0.0, q2=0.0)  # no hourglass control at all
     return SolidGroupRuntime(g, mat, hg, curves or {}, x0, elform=elform)
-
-
-def forces_from_rest(rt: SolidGroupRuntime, x0: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """Nodal forces (kN) after one step of displacement u (mm) from rest, dt = 1 ms."""
-    rt.stress[:] = 0.0
-    rt.stress_gp[:] = 0.0
-    rt._fwork[:] = 0.0
-    f = np.zeros_like(x0)
-    rt.add_forces(x0 + u, u.copy(), 1.0, f)
-    return f
-
-
-def stiffness(rt: SolidGroupRuntime, x0: np.ndarray, eps: float = 1e-7) -> np.ndarray:
-    """K (3n, 3n) kN/mm by columns, ``f = -K u`` (geometric non-linearity O(eps))."""
-    n = x0.size
-    k = np.zeros((n, n))
-    for j in range(n):
-        u = np.zeros(n)
-        u[j] = eps
-        k[:, j] = -forces_from_rest(rt, x0, u.reshape(-1, 3)).ravel() / eps
-    return 0.5 * (k + k.T)
 
 
 def test_gauss_point_gradients_sum_to_the_element_volume_and_its_gradients():
@@ -254,17 +234,6 @@ def make(x0, conn, mat: MaterialDef, curves=None, v0=None):
     if v0 is not None:
         model.node_v0 = np.asarray(v0, dtype=np.float64).copy()
     return model
-
-
-def initial_velocity(x):
-    """Smooth, non-rigid velocity field (bending + torsion + breathing), mm/ms."""
-    lx = x.max(axis=0)
-    s = np.sin(math.pi * x[:, 2] / lx[2])
-    v = np.zeros_like(x)
-    v[:, 0] = 0.02 * s + 0.01 * (x[:, 1] - lx[1] / 2) * x[:, 2] / lx[2]
-    v[:, 1] = -0.01 * (x[:, 0] - lx[0] / 2) * x[:, 2] / lx[2]
-    v[:, 2] = 0.01 * (x[:, 2] / lx[2] - 0.5)
-    return v
 
 
 @pytest.mark.parametrize("law", ["elastic", "rubber"])

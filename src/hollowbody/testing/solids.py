@@ -1,0 +1,48 @@
+"""Helpers for tests of the solid element groups: stiffness by finite differences and a
+smooth free-vibration velocity field. Units: mm, ms, kN."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hollowbody.elements.solid_group import SolidGroupRuntime
+
+
+def forces_from_rest(rt: SolidGroupRuntime, x0: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Nodal forces (n, 3) kN after one step of displacement u (n, 3) mm from rest, dt = 1 ms
+    (the group's stresses, hourglass state and previous forces cleared first)."""
+    rt.stress[:] = 0.0
+    rt.stress_gp[:] = 0.0
+    rt._hgstate[:] = 0.0
+    rt._hgdisp[:] = 0.0
+    rt._fwork[:] = 0.0
+    f = np.zeros_like(x0)
+    rt.add_forces(x0 + u, u.copy(), 1.0, f)
+    return f
+
+
+def stiffness(rt: SolidGroupRuntime, x0: np.ndarray, eps: float = 1e-7) -> np.ndarray:
+    """K (3n, 3n) kN/mm by columns, ``f = -K u``, symmetrised. One call from rest per
+    column with displacement eps (mm): exact up to the geometric non-linearity, O(eps)
+    relative to the element size."""
+    n = x0.size
+    k = np.zeros((n, n))
+    for j in range(n):
+        u = np.zeros(n)
+        u[j] = eps
+        k[:, j] = -forces_from_rest(rt, x0, u.reshape(-1, 3)).ravel() / eps
+    return 0.5 * (k + k.T)
+
+
+def initial_velocity(x: np.ndarray) -> np.ndarray:
+    """Smooth, non-rigid velocity field (n, 3) mm/ms of a box-shaped mesh x (n, 3): bending
+    + torsion + breathing."""
+    lx = x.max(axis=0)
+    s = np.sin(math.pi * x[:, 2] / lx[2])
+    v = np.zeros_like(x)
+    v[:, 0] = 0.02 * s + 0.01 * (x[:, 1] - lx[1] / 2) * x[:, 2] / lx[2]
+    v[:, 1] = -0.01 * (x[:, 0] - lx[0] / 2) * x[:, 2] / lx[2]
+    v[:, 2] = 0.01 * (x[:, 2] / lx[2] - 0.5)
+    return v
