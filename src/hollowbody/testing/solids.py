@@ -46,3 +46,24 @@ def initial_velocity(x: np.ndarray) -> np.ndarray:
     v[:, 1] = -0.01 * (x[:, 0] - lx[0] / 2) * x[:, 2] / lx[2]
     v[:, 2] = 0.01 * (x[:, 2] / lx[2] - 0.5)
     return v
+
+
+def energy_history(run, rt, cycles: int) -> tuple[np.ndarray, float, float]:  # noqa: ANN001
+    """Advance ``run`` (an EngineRun) ``cycles`` cycles; returns the total mechanical energy
+    KE + internal + hourglass of group ``rt`` per cycle (cycles,) J, and the largest
+    internal and hourglass energies reached (J)."""
+    total = np.empty(cycles)
+    ie_max = hg_max = 0.0
+    for k in range(cycles):
+        v = run.step()
+        total[k] = run.kinetic(v) + rt.internal_energy + rt.hourglass_energy
+        ie_max = max(ie_max, rt.internal_energy)
+        hg_max = max(hg_max, rt.hourglass_energy)
+    return total, ie_max, hg_max
+
+
+def rot_axis(axis: np.ndarray, theta: float) -> np.ndarray:
+    """(3, 3) rotation by theta (rad) about ``axis`` (Rodrigues)."""
+    a = axis / np.linalg.norm(axis)
+    k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    return np.eye(3) + math.sin(theta) * k + (1.0 - math.cos(theta)) * k @ k

@@ -29,7 +29,7 @@ from hollowbody.elements.hex8_kinematics import HG_BASE
 from hollowbody.elements.solid_group import SolidGroupRuntime
 from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import HourglassDef, MaterialDef, SolidGroup
-from hollowbody.testing.solids import forces_from_rest, stiffness
+from hollowbody.testing.solids import energy_history, forces_from_rest, rot_axis, stiffness
 
 E_MOD = 0.2  # GPa
 
@@ -180,12 +180,6 @@ def test_qh_scales_the_hourglass_stiffness():
     np.testing.assert_allclose(f2, 0.5 * f1, rtol=1e-9, atol=1e-9 * np.abs(f1).max())
 
 
-def rot_axis(axis: np.ndarray, theta: float) -> np.ndarray:
-    a = axis / np.linalg.norm(axis)
-    k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-    return np.eye(3) + math.sin(theta) * k + (1.0 - math.cos(theta)) * k @ k
-
-
 @pytest.mark.parametrize("ihq", [6, 7])
 def test_rigid_rotation_of_a_prestressed_element_rotates_stress_and_hourglass_forces(ihq):
     """Pre-stress and hourglass forces (from an hourglass deformation), then a rigid
@@ -279,10 +273,6 @@ def test_free_vibration_conserves_energy_with_hourglass_work_accounted(material,
     run = EngineRun(model)
     (rt,) = run.plan.elements
     e0 = run.kinetic(v0)
-    total, hg_max = [], 0.0
-    for _ in range(4000):
-        v = run.step()
-        total.append(run.kinetic(v) + rt.internal_energy + rt.hourglass_energy)
-        hg_max = max(hg_max, rt.hourglass_energy)
+    total, _, hg_max = energy_history(run, rt, 4000)
     assert hg_max > 0.2 * e0
-    assert np.abs(np.array(total) - e0).max() < 0.01 * e0
+    assert np.abs(total - e0).max() < 0.01 * e0

@@ -27,7 +27,7 @@ from hollowbody.model.model import (
 )
 from hollowbody.testing.engine import EngineRun
 from hollowbody.testing.models import PartSpec, assemble_model
-from hollowbody.testing.solids import initial_velocity
+from hollowbody.testing.solids import energy_history, initial_velocity
 
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
                           0.1, 0.2, 0.3, 0.5, 0.75, 1.0])
@@ -104,15 +104,9 @@ def test_elastic_free_vibration_conserves_energy(ihq):
                           v0=v0, ihq=max(ihq, 1), qm=qm, q1=0.0, q2=0.0))
     rt = group(loop)
     e0 = loop.kinetic(v0)
-    energies = []
-    ie_max = 0.0
     # several periods of the lowest modes (the engine's step is the volumetric factor
     # sqrt((1 - nu) / (1 + nu)) = 0.73 of TSSFAC L/c: 4,100 cycles)
-    for _ in range(4100):
-        v_full = loop.step()
-        energies.append(loop.kinetic(v_full) + rt.internal_energy + rt.hourglass_energy)
-        ie_max = max(ie_max, rt.internal_energy)
-    energies = np.array(energies)
+    energies, ie_max, _ = energy_history(loop, rt, 4100)
     assert ie_max > 0.1 * e0  # energy really went through the springs
     assert np.abs(energies - e0).max() < 0.01 * e0
 
@@ -129,13 +123,7 @@ def test_rubber_free_vibration_conserves_energy():
     loop = EngineRun(make(x0, conn, mat, curves, v0=v0, ihq=4, qm=0.05, q1=0.0, q2=0.0))
     rt = group(loop)
     e0 = loop.kinetic(v0)
-    energies = []
-    ie_max = 0.0
-    for _ in range(4000):
-        v_full = loop.step()
-        energies.append(loop.kinetic(v_full) + rt.internal_energy + rt.hourglass_energy)
-        ie_max = max(ie_max, rt.internal_energy)
-    energies = np.array(energies)
+    energies, ie_max, _ = energy_history(loop, rt, 4000)
     assert ie_max > 0.1 * e0  # energy really went through the material
     assert np.abs(energies - e0).max() < 0.01 * e0
 

@@ -36,7 +36,7 @@ from hollowbody.mesh import block_mesh, distort
 from hollowbody.model.model import Curve, HourglassDef, MaterialDef, SolidGroup
 from hollowbody.testing.engine import EngineRun
 from hollowbody.testing.models import PartSpec, assemble_model
-from hollowbody.testing.solids import initial_velocity, stiffness
+from hollowbody.testing.solids import energy_history, initial_velocity, rot_axis, stiffness
 
 E_MOD = 0.2  # GPa
 MUSCLE_STRAIN = np.array([-0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2, -0.1, 0.0,
@@ -181,12 +181,6 @@ def test_cantilever_tip_deflection_converges_to_euler_bernoulli(nu):
     assert abs(fine - 1.0) < abs(coarse - 1.0)
 
 
-def rot_axis(axis: np.ndarray, theta: float) -> np.ndarray:
-    a = axis / np.linalg.norm(axis)
-    k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-    return np.eye(3) + math.sin(theta) * k + (1.0 - math.cos(theta)) * k @ k
-
-
 def test_rigid_rotation_of_a_prestressed_element_rotates_its_stress():
     """Pre-stress at every point, then a rigid rotation by 90 degrees about a skew axis in
     90 steps: the points' stresses come out rotated (1e-12), the nodal forces have no
@@ -256,13 +250,9 @@ def test_free_vibration_on_the_engine_step_conserves_energy(law):
     (rt,) = loop.plan.elements
     assert rt.elform == 2
     e0 = loop.kinetic(v0)
-    energies, ie_max = [], 0.0
-    for _ in range(4000):
-        v_full = loop.step()
-        energies.append(loop.kinetic(v_full) + rt.internal_energy + rt.hourglass_energy)
-        ie_max = max(ie_max, rt.internal_energy)
+    energies, ie_max, _ = energy_history(loop, rt, 4000)
     assert ie_max > 0.1 * e0
-    assert np.abs(np.array(energies) - e0).max() < 0.01 * e0
+    assert np.abs(energies - e0).max() < 0.01 * e0
 
 
 def test_energy_is_the_central_difference_work_of_the_element_forces():
