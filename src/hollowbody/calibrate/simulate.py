@@ -201,4 +201,6 @@ class BlockSimulator:
         from hollowbody.scenarios.block import DTMIN_HOLLOW
 
         d["dtmin_hollow"] = dict(self.options).get("dtmin", DTMIN_HOLLOW)
+        solid = self.config("solid", 40.0)  # the reference's hourglass control, default or not
+        d["solid_hourglass"] = [int(solid.hourglass_ihq), float(solid.hourglass_qh)]
         return {"kind": "block", "hollowbody": package_version(), **d}

@@ -144,6 +144,14 @@ def wall_control_of_calibration(path: str | Path) -> dict:
     return wall_control(_calibration_data(path))
 
 
+def solid_control_of_calibration(path: str | Path) -> dict:
+    """The solid reference's hourglass control a ``calibration.json`` was run with
+    (BlockConfig fields ``hourglass_ihq``, ``hourglass_qh``)."""
+    from hollowbody.calibrate.wall import solid_control
+
+    return solid_control(_calibration_data(path))
+
+
 def _calibration_data(path: str | Path) -> dict:
     """The content of a ``calibration.json`` (UserInputError naming the file if it is not one)."""
     p = Path(path)

@@ -32,3 +32,18 @@ def wall_control(data: dict) -> dict:
     """The walls' hourglass control a calibration ran with ({} for the block's default)."""
     options = data.get("simulator", {}).get("options", {}) or {}
     return {k: options[k] for k in WALL_CONTROL_FIELDS if k in options}
+
+
+#: the solid block's *HOURGLASS (IHQ, QM) of calibrations that do not record theirs: they
+#: were made when the block's default was the stiffness form IHQ 4, QM 0.05
+LEGACY_SOLID_HOURGLASS = (4, 0.05)
+
+
+def solid_control(data: dict) -> dict:
+    """The solid reference's hourglass control a calibration ran with (BlockConfig fields
+    ``hourglass_ihq`` and ``hourglass_qh``)."""
+    sim = data.get("simulator", {}) or {}
+    options = sim.get("options", {}) or {}
+    ihq, qm = sim.get("solid_hourglass") or LEGACY_SOLID_HOURGLASS
+    return {"hourglass_ihq": int(options.get("hourglass_ihq", ihq)),
+            "hourglass_qh": float(options.get("hourglass_qh", qm))}

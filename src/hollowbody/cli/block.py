@@ -18,7 +18,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from hollowbody.cli.calibrate import add_wall_hourglass_options
+from hollowbody.cli.calibrate import (
+    add_solid_hourglass_options,
+    add_wall_hourglass_options,
+    solid_hourglass_options,
+)
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.run_engine import add_external_engine_arguments, external_engine
 from hollowbody.cli.text import plain
@@ -43,8 +47,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: long enough for the rebound)")
     p.add_argument("--elform", type=int, choices=(1, 2), default=1,
-                   help="solid block element: 1 one-point with stiffness hourglass control "
-                        "(default), 2 fully integrated, no hourglass modes (slower)")
+                   help="solid block element: 1 one-point with hourglass control "
+                        "(default; --solid-hourglass), 2 fully integrated, no hourglass modes "
+                        "(about 4x slower per cycle)")
+    add_solid_hourglass_options(p)
     p.add_argument("--friction", type=float, default=0.2,
                    help="impactor-tissue friction coefficient (default 0.2)")
     p.add_argument("--erode", action=argparse.BooleanOptionalAction, default=None,
@@ -122,7 +128,8 @@ def main(args: argparse.Namespace) -> int:
                           wall_hourglass_qh=(0.1 if args.wall_hourglass_qm is None
                                              else args.wall_hourglass_qm),
                           mass_scaling=args.mass_scaling, dtmin=args.dtmin,
-                          thickness_update=args.thickness_update)
+                          thickness_update=args.thickness_update,
+                          **solid_hourglass_options(args))
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
     from hollowbody.solver.outputs import prepare_out_dir

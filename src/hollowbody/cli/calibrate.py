@@ -74,6 +74,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="SAE J211 filter class of the contact force in the fitness "
                         "(default 180; 0: no filter)")
     add_wall_hourglass_options(p)
+    add_solid_hourglass_options(p)
     p.add_argument("--quiet", action="store_true",
                    help="no progress display (default: progress shown)")
     p.add_argument("--out", type=Path, required=True, help="output folder (required)")
@@ -100,6 +101,35 @@ def add_wall_hourglass_options(p: argparse.ArgumentParser, default: int | None =
                         + ("0" if default == 0 else "the calibration's, else 0") + ")")
     p.add_argument("--wall-hourglass-qm", type=float, default=None, metavar="QM",
                    help="QM of --wall-hourglass (default 0.1)")
+
+
+def add_solid_hourglass_options(p: argparse.ArgumentParser, study: bool = False) -> None:
+    """``--solid-hourglass IHQ`` and ``--solid-hourglass-qm QM`` (the solid block's control)."""
+    p.add_argument("--solid-hourglass", type=int, default=None, metavar="IHQ",
+                   help="*HOURGLASS IHQ (1-7) of the solid block's one-point hexahedra "
+                        "(default " + ("the calibration's, else " if study else "")
+                        + "6, the assumed-strain stiffness form; 4 with QM 0.05, the "
+                        "default before, about doubles the block's force)")
+    p.add_argument("--solid-hourglass-qm", type=float, default=None, metavar="QM",
+                   help="QM of --solid-hourglass (default 1 for IHQ 6 and 7, else 0.1)")
+
+
+def solid_hourglass_options(args: argparse.Namespace) -> dict:
+    """BlockConfig fields of --solid-hourglass / --solid-hourglass-qm ({} when neither is
+    given); UserInputError for an IHQ outside 1-7 or a negative QM."""
+    from hollowbody.scenarios.block import SOLID_HOURGLASS, SOLID_HOURGLASS_TYPES
+
+    ihq, qm = args.solid_hourglass, args.solid_hourglass_qm
+    if ihq is None and qm is None:
+        return {}
+    ihq = SOLID_HOURGLASS[0] if ihq is None else ihq
+    if ihq not in SOLID_HOURGLASS_TYPES:
+        raise UserInputError(f"--solid-hourglass must be 1-7 (got {ihq})")
+    if qm is not None and qm < 0.0:
+        raise UserInputError(f"--solid-hourglass-qm must be >= 0 (got {qm:g})")
+    if qm is None:
+        qm = 1.0 if ihq in (6, 7) else 0.1
+    return {"hourglass_ihq": int(ihq), "hourglass_qh": float(qm)}
 
 
 def wall_hourglass_options(args: argparse.Namespace) -> dict:
@@ -214,7 +244,8 @@ def build_settings(args: argparse.Namespace):
     # the engine is looked for here unless the evaluations run on a cluster's nodes
     engine = external_engine(args, find=getattr(args, "cluster", None) is None)
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed,
-                              options=wall_hourglass_options(args), engine=engine)
+                              options={**wall_hourglass_options(args),
+                                       **solid_hourglass_options(args)}, engine=engine)
     try:  # the block's own checks (mesh divides the block, ...)
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], space.rounded(space.lower))

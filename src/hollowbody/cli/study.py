@@ -29,7 +29,12 @@ import argparse
 import sys
 from pathlib import Path
 
-from hollowbody.cli.calibrate import add_wall_hourglass_options, wall_hourglass_options
+from hollowbody.cli.calibrate import (
+    add_solid_hourglass_options,
+    add_wall_hourglass_options,
+    solid_hourglass_options,
+    wall_hourglass_options,
+)
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.text import plain
 from hollowbody.errors import UserInputError
@@ -59,6 +64,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--vtk", action=argparse.BooleanOptionalAction, default=False,
                    help="write ParaView states of every run (default: no)")
     add_wall_hourglass_options(p, default=None)
+    add_solid_hourglass_options(p, study=True)
     g = p.add_mutually_exclusive_group()
     g.add_argument("--workers", type=int, default=1,
                    help="runs at a time (default 1: serial, comparable wall times)")
@@ -79,6 +85,7 @@ def main(args: argparse.Namespace) -> int:
     from hollowbody.calibrate.study import (
         hollow_from_calibration,
         run_study,
+        solid_control_of_calibration,
         wall_control_of_calibration,
     )
     from hollowbody.report.study import wall_time_ratios, write_study_report
@@ -99,8 +106,17 @@ def main(args: argparse.Namespace) -> int:
             print(f"note: the walls of {args.hollow_from} were calibrated with "
                   f"{_control_text(calibrated)}; this study runs them with "
                   f"{_control_text(options)}", file=sys.stderr)
+    solid = solid_hourglass_options(args)
+    if args.hollow_from:
+        calibrated = solid_control_of_calibration(args.hollow_from)
+        if not solid:
+            solid = calibrated  # the solid block the walls were fitted to
+        elif solid != calibrated:
+            print(f"note: the walls of {args.hollow_from} were fitted to a solid block with "
+                  f"{_solid_text(calibrated)}; this study runs the solid block with "
+                  f"{_solid_text(solid)}", file=sys.stderr)
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time,
-                              vtk=args.vtk, options=options)
+                              vtk=args.vtk, options={**options, **solid})
     try:
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], wall)
@@ -128,3 +144,8 @@ def _control_text(options: dict) -> str:
         return "no wall *HOURGLASS (viscous IHQ 1, QH 0.1)"
     return (f"*HOURGLASS IHQ {options['wall_hourglass_ihq']} "
             f"QM {options.get('wall_hourglass_qh', 0.1):g}")
+
+
+def _solid_text(options: dict) -> str:
+    """'*HOURGLASS IHQ 6 QM 1' for a solid-control dict."""
+    return f"*HOURGLASS IHQ {options['hourglass_ihq']} QM {options['hourglass_qh']:g}"

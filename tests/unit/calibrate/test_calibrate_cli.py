@@ -7,6 +7,7 @@ import json
 import pytest
 
 import hollowbody.cli.main as cli_main
+from hollowbody.errors import UserInputError
 
 COMMANDS = ("calibrate", "study", "demo")
 
@@ -129,17 +130,55 @@ def test_calibrate_wall_hourglass_goes_into_the_runs_and_the_cache_key():
     assert hg4.describe() != plain.describe() != hg4q.describe()
 
 
-def _calibration_file(tmp_path, options):
+def test_calibrate_solid_hourglass_goes_into_the_reference_and_the_cache_key():
+    """--solid-hourglass 4: the solid reference runs with IHQ 4 QM 0.1 (QM as given); the
+    description records the solid block's control whether given or the default (IHQ 6, QM
+    1), so references and caches of different controls are never mixed up."""
+    from hollowbody.cli.calibrate import build_settings
+
+    _, plain = build_settings(_parsed([]))
+    _, hg4 = build_settings(_parsed(["--solid-hourglass", "4"]))
+    _, hg4q = build_settings(_parsed(["--solid-hourglass", "4", "--solid-hourglass-qm", "0.05"]))
+    assert (plain.config("solid", 40.0).hourglass_ihq, plain.config("solid", 40.0).hourglass_qh) \
+        == (6, 1.0)
+    assert (hg4.config("solid", 40.0).hourglass_ihq, hg4.config("solid", 40.0).hourglass_qh) \
+        == (4, 0.1)
+    assert hg4q.config("solid", 40.0).hourglass_qh == 0.05
+    assert plain.describe()["solid_hourglass"] == [6, 1.0]
+    assert hg4q.describe()["solid_hourglass"] == [4, 0.05]
+    assert hg4.describe() != plain.describe() != hg4q.describe()
+
+
+@pytest.mark.parametrize("argv, why", [
+    (["--solid-hourglass", "8"], "--solid-hourglass must be 1-7"),
+    (["--solid-hourglass", "0"], "--solid-hourglass must be 1-7"),
+    (["--solid-hourglass-qm", "-1"], "--solid-hourglass-qm must be >= 0"),
+])
+def test_calibrate_refuses_bad_solid_hourglass(argv, why):
+    from hollowbody.cli.calibrate import build_settings
+
+    with pytest.raises(UserInputError, match=why):
+        build_settings(_parsed(argv))
+
+
+def _calibration_file(tmp_path, options, solid=None):
     p = tmp_path / "calibration.json"
-    p.write_text(json.dumps({"best_parameters": {"E": 120.0, "yield": 9.0},
-                             "simulator": {"fixed": {}, "options": options}}))
+    sim = {"fixed": {}, "options": options}
+    if solid is not None:
+        sim["solid_hourglass"] = solid
+    p.write_text(json.dumps({"best_parameters": {"E": 120.0, "yield": 9.0}, "simulator": sim}))
     return p
 
 
+#: the solid block's control of calibrations that do not record it (made before IHQ 6)
+LEGACY_SOLID = {"hourglass_ihq": 4, "hourglass_qh": 0.05}
+
+
 @pytest.mark.parametrize("extra, expected, note", [
-    ([], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1}, False),
-    (["--wall-hourglass", "4"], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1}, False),
-    (["--wall-hourglass", "0"], {}, True),
+    ([], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1, **LEGACY_SOLID}, False),
+    (["--wall-hourglass", "4"], {"wall_hourglass_ihq": 4, "wall_hourglass_qh": 0.1,
+                                 **LEGACY_SOLID}, False),
+    (["--wall-hourglass", "0"], LEGACY_SOLID, True),
 ])
 def test_study_runs_calibrated_walls_with_their_hourglass_control(tmp_path, capsys,
                                                                    monkeypatch, extra,
@@ -168,3 +207,35 @@ def test_study_runs_calibrated_walls_with_their_hourglass_control(tmp_path, caps
     assert seen["wall"]["E"] == 120.0 and seen["wall"]["yield"] == 9.0
     err = capsys.readouterr().err
     assert ("were calibrated with *HOURGLASS IHQ 4 QM 0.1" in err) is note
+
+
+@pytest.mark.parametrize("recorded, extra, expected, note", [
+    ([6, 1.0], [], {"hourglass_ihq": 6, "hourglass_qh": 1.0}, False),
+    (None, [], LEGACY_SOLID, False),
+    ([6, 1.0], ["--solid-hourglass", "4", "--solid-hourglass-qm", "0.05"], LEGACY_SOLID, True),
+    (None, ["--solid-hourglass", "6"], {"hourglass_ihq": 6, "hourglass_qh": 1.0}, True),
+])
+def test_study_runs_the_solid_block_the_walls_were_fitted_to(tmp_path, capsys, monkeypatch,
+                                                             recorded, extra, expected, note):
+    """The study's solid block takes the hourglass control of the calibration's solid
+    reference (recorded in calibration.json; IHQ 4 QM 0.05 for calibrations made before it
+    was recorded) unless --solid-hourglass says otherwise, and then says so."""
+    import hollowbody.calibrate.study as cal_study
+    import hollowbody.report.study as report_study
+
+    seen = {}
+
+    def fake_run_study(sim, speeds, out, hollow_params=None, runner=None):
+        seen["solid"] = sim.config("solid", 40.0)
+        return []
+
+    monkeypatch.setattr(cal_study, "run_study", fake_run_study)
+    monkeypatch.setattr(report_study, "write_study_report",
+                        lambda rows, out: {"table_md": out / "study.md"})
+    cal = _calibration_file(tmp_path, {}, solid=recorded)
+    code = cli_main.main(["study", "--tissue", "muscle", "--out", str(tmp_path / "s"),
+                          "--hollow-from", str(cal), "--workers", "1", *extra])
+    assert code == 0
+    got = {"hourglass_ihq": seen["solid"].hourglass_ihq, "hourglass_qh": seen["solid"].hourglass_qh}
+    assert got == expected
+    assert ("were fitted to a solid block with" in capsys.readouterr().err) is note

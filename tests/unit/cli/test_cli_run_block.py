@@ -41,6 +41,8 @@ def test_run_deck_is_not_modified(tmp_path, capsys):
     (["--mesh", "7"], "does not divide"),
     (["--speed", "-3"], "positive"),
     (["--structure", "hollow", "--cell", "35"], "does not divide"),
+    (["--solid-hourglass", "8"], "--solid-hourglass must be 1-7"),
+    (["--solid-hourglass", "6", "--solid-hourglass-qm", "-0.1"], "must be >= 0"),
 ])
 def test_block_bad_options(tmp_path, capsys, args, words):
     code = main(["block", "--out", str(tmp_path / "b"), "--quiet", *args])

@@ -101,6 +101,37 @@ def test_solid_block_element_formulation():
         BlockConfig(structure="hollow", elform=2)
 
 
+def test_solid_block_hourglass_control():
+    """The solid block's deck carries *HOURGLASS IHQ 6 QM 1 by default (the assumed-strain
+    form, docs/block.md) and what --solid-hourglass gives (QM 0.1 by default for other
+    forms); IHQ outside 1-7 or a negative QM is refused."""
+    def control(cfg):
+        hg = build_model(build_block_deck(cfg)).hourglass_of(1)
+        return hg.ihq, hg.qm
+
+    assert control(BlockConfig(mesh=30.0)) == (6, pytest.approx(1.0))
+    assert control(BlockConfig(mesh=30.0, hourglass_ihq=4, hourglass_qh=0.05)) == (
+        4, pytest.approx(0.05))
+    for bad in (dict(hourglass_ihq=0), dict(hourglass_ihq=8), dict(hourglass_qh=-1.0)):
+        with pytest.raises(ValueError, match="solid hourglass IHQ must be 1-7"):
+            BlockConfig(**bad)
+
+
+@pytest.mark.parametrize("argv, expected", [
+    ([], (6, 1.0)), (["--solid-hourglass", "4"], (4, 0.1)),
+    (["--solid-hourglass", "4", "--solid-hourglass-qm", "0.05"], (4, 0.05)),
+    (["--solid-hourglass", "7"], (7, 1.0)), (["--solid-hourglass-qm", "0.5"], (6, 0.5)),
+])
+def test_block_cli_solid_hourglass(tmp_path, argv, expected):
+    from hollowbody.cli.main import main
+    from hollowbody.io.keyword import read_deck
+
+    out = tmp_path / "b"
+    assert main(["block", "--mesh", "30", "--dry-run", "--out", str(out), *argv]) == 0
+    hg = build_model(read_deck(out / "deck.k")).hourglass_of(1)
+    assert (hg.ihq, hg.qm) == (expected[0], pytest.approx(expected[1]))
+
+
 def test_block_cli_refuses_an_unknown_elform(capsys):
     from hollowbody.cli.main import main
 
