@@ -104,7 +104,8 @@ def run_study_task(task: StudyTask) -> dict:
                 "energy_ratio": finite_or_none(s.get("energy_ratio")),
                 "hourglass_percent": finite_or_none(hourglass_percent(s)),
                 "pass_through_nodes": pass_through_nodes(s),
-                "outcome": impact_outcome(finite_or_none(curve.max_displacement)),
+                "outcome": s.get("impact_outcome",
+                                 impact_outcome(finite_or_none(curve.max_displacement))),
                 "run_dir": out.run_dir})
     quality, reasons = verdict_of(s)
     row["quality"] = quality

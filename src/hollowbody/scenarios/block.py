@@ -363,12 +363,16 @@ def _add_hollow_block(deck, cfg: BlockConfig):
 
 #: Outcomes of a block impact by the impactor's maximum travel (see :func:`impact_outcome`)
 STOPPED, REACHED_BASE, THROUGH_BASE = "stopped", "reached the base", "through the base"
+#: the run ended (error termination) while the impactor was still pressing into the block
+NOT_STOPPED = "ended before it stopped"
 
 
-def impact_outcome(max_displacement: float | None) -> str | None:
+def impact_outcome(max_displacement: float | None, advancing: bool = False) -> str | None:
     """How far the impactor got, from its maximum travel (mm).
 
-    ``stopped`` below 90 % of the block height (the tissue stopped it);
+    ``stopped`` below 90 % of the block height (the tissue stopped it), unless
+    ``advancing`` (the run ended while the impactor still moved into the block, e.g.
+    an error termination): then ``ended before it stopped``;
     ``reached the base`` up to the height + 5 mm (it crushed the block onto the
     fixed base: the force peak is the base's, not the tissue's); ``through the
     base`` beyond (nodes of the fixed base were pushed through the impactor's
@@ -379,8 +383,15 @@ def impact_outcome(max_displacement: float | None) -> str | None:
         return None
     h = BLOCK_SIZE[2]
     if max_displacement < 0.9 * h:
-        return STOPPED
+        return NOT_STOPPED if advancing else STOPPED
     return REACHED_BASE if max_displacement <= h + 5.0 else THROUGH_BASE
+
+
+def still_advancing(curve) -> bool:
+    """True when the impactor's last recorded travel is its largest and still growing
+    (a run that ended there ended before the tissue stopped the impactor)."""
+    d = np.asarray(curve.displacement, dtype=float)
+    return bool(d.size >= 2 and d[-1] > d[-2] and d[-1] >= np.nanmax(d))
 
 
 @dataclass
@@ -427,7 +438,9 @@ def _block_impact(cfg: BlockConfig, out: Path, vtk: bool, quiet: bool,
         status = summary["status"]
     curve = _impactor_curve(folder, f"{cfg.structure} {cfg.tissue}")
     fdr.write_csv(curve, out / "force_displacement.csv")
-    outcome = impact_outcome(float(curve.max_displacement) if curve.time.size else None)
+    outcome = impact_outcome(float(curve.max_displacement) if curve.time.size else None,
+                             advancing=status != "normal termination"
+                             and still_advancing(curve))
     summary["impact_outcome"] = outcome
     summary_path = folder / "summary.json"
     if summary_path.exists():

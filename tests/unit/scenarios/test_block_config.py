@@ -35,6 +35,23 @@ def test_impact_outcome_by_impactor_travel():
     assert impact_outcome(95.0) == "reached the base"
     assert impact_outcome(95.1) == "through the base"
     assert impact_outcome(None) is None and impact_outcome(float("nan")) is None
+    # a run that ended (error termination) while the impactor still pressed in
+    assert impact_outcome(60.0, advancing=True) == "ended before it stopped"
+    assert impact_outcome(85.0, advancing=True) == "reached the base"
+
+
+def test_still_advancing_reads_the_end_of_the_travel():
+    from types import SimpleNamespace
+
+    from hollowbody.scenarios.block import still_advancing
+
+    def c(d):
+        return SimpleNamespace(displacement=np.array(d, dtype=float))
+
+    assert still_advancing(c([0.0, 10.0, 20.0]))
+    assert not still_advancing(c([0.0, 20.0, 19.0]))  # rebounding: it was stopped
+    assert not still_advancing(c([0.0, 20.0, 20.0]))  # at rest
+    assert not still_advancing(c([5.0]))
 
 
 def test_runs_through_the_base_are_left_out_of_the_wall_time_ratio():
