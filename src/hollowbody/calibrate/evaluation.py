@@ -73,7 +73,9 @@ def hourglass_percent(summary: dict | None) -> float | None:
 
     A quality indicator: above ~10 % the zero-energy modes carry a large share
     of the work and the force-displacement curve is questionable."""
-    e = (summary or {}).get("energies_J") or {}
+    s = summary or {}
+    # an error termination's failing cycle can be unbalanced: its last balanced record
+    e = s.get("energies_before_error_J") or s.get("energies_J") or {}
     hg, total = finite_or_none(e.get("hourglass")), finite_or_none(e.get("total"))
     if hg is None or total is None or total <= 0.0:
         return None

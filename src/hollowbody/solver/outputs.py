@@ -41,7 +41,7 @@ from hollowbody.solver.energies import energies, node_velocity_full_step
 from hollowbody.solver.energy_kernels import share_energy
 from hollowbody.solver.joints import JointTerm
 from hollowbody.solver.run_lock import check_free
-from hollowbody.solver.verdict import OK, Thresholds, assess, headline
+from hollowbody.solver.verdict import OK, Thresholds, assess, before_error, headline
 
 DEFAULT_HISTORY_COUNT = 500
 DEFAULT_STATE_COUNT = 20
@@ -229,6 +229,10 @@ class RunOutputs:
         self.jntforc = HistoryWriter(self.out / "jntforc.csv", list(JointTerm.JNTFORC_COLUMNS),
                                      pos.get("jntforc"))
         self.last_energies: dict[str, float] = {}
+        #: the glstat record before the last one, with its time (an error termination's
+        #: last record can be the collapse itself; the summary then keeps this one too)
+        self.prev_energies: dict[str, float] = {}
+        self._energy_time = 0.0  # time of last_energies (ms)
         self._last_forced: tuple[int, float] | None = None
         #: (cycle, time) of each output's last row: a forced write at the end of a run
         #: does not write a row again that its interval wrote at the same state
@@ -240,6 +244,8 @@ class RunOutputs:
             if self.vtk is not None:
                 self.vtk.entries = [tuple(e) for e in resume["vtk_entries"]]
             self.last_energies = dict(resume["last_energies"])
+            self.prev_energies = dict(resume.get("prev_energies", {}))
+            self._energy_time = float(resume.get("energy_time", 0.0))
             forced = resume["last_forced"]
             self._last_forced = tuple(forced) if forced is not None else None
             self._rows_at = {k: tuple(v) for k, v in resume.get("rows_at", {}).items()}
@@ -253,6 +259,8 @@ class RunOutputs:
                 "vtk_entries": list(self.vtk.entries) if self.vtk is not None else [],
                 "d3plot_states": len(self.d3plot.states) if self.d3plot is not None else 0,
                 "last_energies": dict(self.last_energies),
+                "prev_energies": dict(self.prev_energies),
+                "energy_time": self._energy_time,
                 "last_forced": self._last_forced,
                 "rows_at": dict(self._rows_at)}
 
@@ -272,7 +280,8 @@ class RunOutputs:
         key = (state.cycle, t)
         if self._due("glstat", key, force):
             e = energies(self.asm, state, self._full_step_v(state))
-            self.last_energies = e
+            self.prev_energies = {**self.last_energies, "time_ms": self._energy_time}
+            self.last_energies, self._energy_time = e, t
             self.glstat.write([t, state.cycle, state.dt_next, e["kinetic"], e["internal"],
                                e["hourglass"], e["contact"], e["external_work"], e["total"],
                                e["energy_ratio"], e["added_mass"]])
@@ -456,6 +465,7 @@ class RunOutputs:
             "timing_seconds": dict(state.timing),
             "energy_ratio": last.get("energy_ratio"),
             "energies_J": last,
+            **before_error(status, last, self.prev_energies),
             "warnings": state.monitors.warnings if state.monitors is not None else [],
             "mass_scaling": state.mass_scaling.summary(),
             "contact_pass_through": {

@@ -18,6 +18,10 @@ suspect limit (the physical argument for each default is in docs/solver.md):
 - mass added by mass scaling in % of the model's mass: the inertia changed;
 - nodes pushed through a contact surface, as a share of the model's nodes.
 
+An error termination whose last energy record is the collapse itself (balanced just
+before) is graded on the record before it (:func:`before_error`), the failing cycle
+named as a warning.
+
 The verdict is the worst of the indicators. It needs only the summary, so it
 can be recomputed for runs written before it existed (:func:`quality_of`).
 """
@@ -104,6 +108,22 @@ def _grade(value: float, warn: float, suspect: float) -> str | None:
     return None
 
 
+def before_error(status: str, last: dict, prev: dict,
+                 thresholds: Thresholds | None = None) -> dict:
+    """Summary fields of an error termination whose last energy record is unbalanced
+    while the one before it is not (an element collapsing in the failing cycle):
+    ``energies_before_error_J`` (that record, with its ``time_ms``); {} otherwise."""
+    th = thresholds or Thresholds()
+    if status == "normal termination" or not prev or "energy_ratio" not in prev:
+        return {}
+    r_last, r_prev = _num(last.get("energy_ratio")), _num(prev.get("energy_ratio"))
+    if r_prev is None or abs(r_prev - 1.0) > th.energy_ratio_warn:
+        return {}
+    if r_last is not None and abs(r_last - 1.0) <= th.energy_ratio_warn:
+        return {}
+    return {"energies_before_error_J": dict(prev)}
+
+
 def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, list[dict]]:
     """(quality, reasons) of a run from its summary (see the module docstring).
 
@@ -120,6 +140,14 @@ def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, li
                             "message": message})
 
     ratio = _num(summary.get("energy_ratio"))
+    before = summary.get("energies_before_error_J")
+    if before:  # graded on the last balanced record; the failing cycle's named
+        e = before
+        t_ok = _num(before.get("time_ms"))
+        add(WARNING, "failing_cycle", ratio,
+            f"energy ratio {ratio:.3g} in the failing cycle; "
+            f"{_num(before.get('energy_ratio')):.5g} at t={t_ok:.6g} ms before it")
+        ratio = _num(before.get("energy_ratio"))
     if ratio is not None:
         add(_grade(abs(ratio - 1.0), th.energy_ratio_warn, th.energy_ratio_suspect),
             "energy_ratio", ratio, f"energy ratio {ratio:.3g}")

@@ -28,3 +28,19 @@ def test_fast_hollow_impact_reports_reaching_the_base(tmp_path):
     assert s["impact_outcome"] == REACHED_BASE == res.summary["impact_outcome"]
     assert s["eroded_elements"] > 0
     assert abs(s["energy_ratio"] - 1.0) < 0.01
+
+
+def test_solid_block_that_inverts_keeps_its_balanced_energies(tmp_path):
+    """Solid muscle at 100 km/h with the block's default hourglass control: an element
+    under the impactor inverts (negative volume, measured at 3.88 ms, 89.8 mm) and its
+    collapse blows up the failing cycle's energies (ratio 4.9e26). The summary keeps
+    the last balanced record (within 1 % of 1: a conservation law up to the collapse)
+    and grades the run on it, naming the failing cycle."""
+    block_impact(BlockConfig(speed_kmh=100.0), tmp_path, vtk=False)
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["status"] == "error termination" and "negative volume" in s["reason"]
+    before = s["energies_before_error_J"]
+    assert abs(before["energy_ratio"] - 1.0) < 0.01
+    assert 0.0 < before["time_ms"] <= s["end_time_ms"]
+    indicators = {r["indicator"] for r in s["quality_reasons"]}
+    assert "failing_cycle" in indicators and "energy_ratio" not in indicators

@@ -125,3 +125,45 @@ def test_a_summary_without_a_verdict_is_assessed_and_one_with_it_is_kept():
     assert verdict_of(kept) == (WARNING, [{"message": "x"}])
     assert quality_of(None) is None
     assert quality_of({"status": "normal termination", "surrogate": True}) is None
+
+
+def _energies(ratio: float, hourglass: float = 0.3, time_ms: float | None = None) -> dict:
+    e = {"kinetic": 2.0, "internal": 7.5, "hourglass": hourglass, "contact": 0.2,
+         "total": 10.0 * ratio, "energy_ratio": ratio}
+    if time_ms is not None:
+        e["time_ms"] = time_ms
+    return e
+
+
+@pytest.mark.parametrize("status, last, prev, kept", [
+    ("error termination", 4.9e26, 1.0002, True),   # collapse in the failing cycle
+    ("error termination", 4.9e26, 1.28, False),    # unbalanced before it: no excuse
+    ("error termination", 1.0001, 1.0002, False),  # balanced to the end
+    ("normal termination", 4.9e26, 1.0002, False),  # only error terminations
+])
+def test_before_error_keeps_the_last_balanced_record(status, last, prev, kept):
+    from hollowbody.solver.verdict import before_error
+
+    got = before_error(status, _energies(last), _energies(prev, time_ms=3.86))
+    assert bool(got) is kept
+    if kept:
+        assert got["energies_before_error_J"]["energy_ratio"] == prev
+        assert got["energies_before_error_J"]["time_ms"] == 3.86
+    assert before_error("error termination", _energies(4.9e26), {}) == {}
+
+
+def test_an_error_terminations_failing_cycle_is_named_and_the_rest_graded_before_it():
+    """The energy indicators of a run whose element collapsed in its last cycle are those
+    of the last balanced record (hourglass 12 % there: a warning), and the failing cycle's
+    imbalance is named with the time of that record."""
+    s = _summary(energy_ratio=4.9e26, status="error termination")
+    s["energies_J"] = _energies(4.9e26, hourglass=0.01)
+    s["energies_before_error_J"] = _energies(1.0002, hourglass=0.9, time_ms=3.8601)
+    q, reasons = assess(s)
+    by = {r["indicator"]: r for r in reasons}
+    assert "energy_ratio" not in by  # 1.0002 before the failing cycle
+    assert by["failing_cycle"]["level"] == WARNING
+    assert "4.9e+26 in the failing cycle" in by["failing_cycle"]["message"]
+    assert "t=3.8601 ms" in by["failing_cycle"]["message"]
+    assert by["hourglass"]["level"] == WARNING and by["hourglass"]["value"] == pytest.approx(0.12)
+    assert q == WARNING
