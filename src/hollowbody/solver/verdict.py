@@ -99,6 +99,11 @@ def _num(v: object) -> float | None:
     return f if math.isfinite(f) else None
 
 
+def _fmt(value: float | None, spec: str) -> str:
+    """A number formatted, or 'not finite' for None (a NaN or infinity read as None)."""
+    return "not finite" if value is None else format(value, spec)
+
+
 def _grade(value: float, warn: float, suspect: float) -> str | None:
     """SUSPECT / WARNING / None for a value that is worse the larger it is."""
     if value > suspect:
@@ -143,11 +148,11 @@ def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, li
     before = summary.get("energies_before_error_J")
     if before:  # graded on the last balanced record; the failing cycle's named
         e = before
-        t_ok = _num(before.get("time_ms"))
+        r_ok, t_ok = _num(before.get("energy_ratio")), _num(before.get("time_ms"))
         add(WARNING, "failing_cycle", ratio,
-            f"energy ratio {ratio:.3g} in the failing cycle; "
-            f"{_num(before.get('energy_ratio')):.5g} at t={t_ok:.6g} ms before it")
-        ratio = _num(before.get("energy_ratio"))
+            f"energy ratio {_fmt(ratio, '.3g')} in the failing cycle; {_fmt(r_ok, '.5g')}"
+            f" at t={_fmt(t_ok, '.6g')} ms before it")
+        ratio = r_ok
     if ratio is not None:
         add(_grade(abs(ratio - 1.0), th.energy_ratio_warn, th.energy_ratio_suspect),
             "energy_ratio", ratio, f"energy ratio {ratio:.3g}")

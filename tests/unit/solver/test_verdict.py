@@ -167,3 +167,12 @@ def test_an_error_terminations_failing_cycle_is_named_and_the_rest_graded_before
     assert "t=3.8601 ms" in by["failing_cycle"]["message"]
     assert by["hourglass"]["level"] == WARNING and by["hourglass"]["value"] == pytest.approx(0.12)
     assert q == WARNING
+
+
+def test_a_failing_cycle_with_energies_not_finite_is_named_too():
+    s = _summary(energy_ratio=float("nan"), status="error termination")
+    s["energies_before_error_J"] = _energies(1.0002, time_ms=0.46)
+    q, reasons = assess(s)
+    (fc,) = [r for r in reasons if r["indicator"] == "failing_cycle"]
+    assert fc["message"].startswith("energy ratio not finite in the failing cycle; 1.0002")
+    assert q == WARNING
