@@ -201,6 +201,14 @@ class BlockSimulator:
         from hollowbody.scenarios.block import DTMIN_HOLLOW
 
         d["dtmin_hollow"] = dict(self.options).get("dtmin", DTMIN_HOLLOW)
-        solid = self.config("solid", 40.0)  # the reference's hourglass control, default or not
-        d["solid_hourglass"] = [int(solid.hourglass_ihq), float(solid.hourglass_qh)]
+        # the solid reference's hourglass control, given or the block's default, recorded once
+        # (not also as options); left out when it is the one of calibrations made before it
+        # was recorded (IHQ 4, QM 0.05), so those resume and keep their caches
+        from hollowbody.calibrate.wall import LEGACY_SOLID_HOURGLASS, SOLID_CONTROL_FIELDS
+
+        d["options"] = {k: v for k, v in d["options"].items() if k not in SOLID_CONTROL_FIELDS}
+        solid = self.config("solid", 40.0)
+        control = (int(solid.hourglass_ihq), float(solid.hourglass_qh))
+        if control != LEGACY_SOLID_HOURGLASS:
+            d["solid_hourglass"] = list(control)
         return {"kind": "block", "hollowbody": package_version(), **d}

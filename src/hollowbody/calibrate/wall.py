@@ -34,8 +34,11 @@ def wall_control(data: dict) -> dict:
     return {k: options[k] for k in WALL_CONTROL_FIELDS if k in options}
 
 
+#: BlockConfig fields of the solid reference's hourglass control
+SOLID_CONTROL_FIELDS = ("hourglass_ihq", "hourglass_qh")
 #: the solid block's *HOURGLASS (IHQ, QM) of calibrations that do not record theirs: they
-#: were made when the block's default was the stiffness form IHQ 4, QM 0.05
+#: were made when the block's default was the stiffness form IHQ 4, QM 0.05 (a calibration
+#: run with that control records none either)
 LEGACY_SOLID_HOURGLASS = (4, 0.05)
 
 
@@ -43,7 +46,5 @@ def solid_control(data: dict) -> dict:
     """The solid reference's hourglass control a calibration ran with (BlockConfig fields
     ``hourglass_ihq`` and ``hourglass_qh``)."""
     sim = data.get("simulator", {}) or {}
-    options = sim.get("options", {}) or {}
     ihq, qm = sim.get("solid_hourglass") or LEGACY_SOLID_HOURGLASS
-    return {"hourglass_ihq": int(options.get("hourglass_ihq", ihq)),
-            "hourglass_qh": float(options.get("hourglass_qh", qm))}
+    return {"hourglass_ihq": int(ihq), "hourglass_qh": float(qm)}

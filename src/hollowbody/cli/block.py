@@ -145,10 +145,12 @@ def main(args: argparse.Namespace) -> int:
     res = block_impact(cfg, out, vtk=args.vtk, quiet=args.quiet, engine=engine)
     s = res.summary
     print(f"{s['status']}: {s['reason']}")
+    before = (s.get("energies_before_error_J") or {}).get("energy_ratio")
     print(f"  peak force {res.curve.peak_force:.3f} kN, max impactor displacement "
           f"{res.curve.max_displacement:.2f} mm, energy ratio "
-          f"{(s.get('energy_ratio') or float('nan')):.4f}, {s['cycles']} cycles, wall "
-          f"{s['wall_seconds']:.1f} s")
+          f"{_ratio(s.get('energy_ratio'))}"
+          + (f" ({before:.4f} before the failing cycle)" if before is not None else "")
+          + f", {s['cycles']} cycles, wall {s['wall_seconds']:.1f} s")
     outcome = s.get("impact_outcome")
     if outcome == "through the base":
         print(f"  WARNING: the impactor went {res.curve.max_displacement:.1f} mm, through the "
@@ -156,8 +158,17 @@ def main(args: argparse.Namespace) -> int:
     elif outcome == "reached the base":
         print("  note: the impactor crushed the block onto its fixed base (the force peak is "
               "the base's)")
+    elif outcome == "ended before it stopped":
+        print(f"  note: the run ended with the impactor still pressing in at "
+              f"{res.curve.max_displacement:.1f} mm: the block did not stop it within the run")
     print(f"  outputs in {out} (deck.k, force_displacement.csv/.png, summary.json, states.pvd)")
     return exit_code(s["status"])
+
+
+def _ratio(r: float | None) -> str:
+    """An energy ratio as printed: four decimals, or three digits when it blew up."""
+    r = float("nan") if r is None else float(r)
+    return f"{r:.4f}" if abs(r) < 1e4 else f"{r:.3g}"
 
 
 def _variant(cfg, structure: str):  # noqa: ANN001, ANN202 - BlockConfig

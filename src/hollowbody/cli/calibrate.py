@@ -111,7 +111,8 @@ def add_solid_hourglass_options(p: argparse.ArgumentParser, study: bool = False)
                         + "6, the assumed-strain stiffness form; 4 with QM 0.05, the "
                         "default before, about doubles the block's force)")
     p.add_argument("--solid-hourglass-qm", type=float, default=None, metavar="QM",
-                   help="QM of --solid-hourglass (default 1 for IHQ 6 and 7, else 0.1)")
+                   help="QM of --solid-hourglass (default 1 for IHQ 6 and 7, else 0.1"
+                        + ("; alone: with the calibration's IHQ" if study else "") + ")")
 
 
 def solid_hourglass_options(args: argparse.Namespace) -> dict:

@@ -3,8 +3,9 @@
 Runs the solid and the hollow block test at each speed (hollow walls from a
 calibration's best candidate with --hollow-from, run with the hourglass
 control they were calibrated with unless --wall-hourglass says otherwise; else
-the paper's fit: muscle E 100 MPa / yield 4 MPa, fat 50 / 2 MPa, 1.5 mm walls)
-and writes into DIR:
+the paper's fit: muscle E 100 MPa / yield 4 MPa, fat 50 / 2 MPa, 1.5 mm walls;
+the solid block with the hourglass control of the calibration's solid reference
+unless --solid-hourglass says otherwise, else the block's IHQ 6) and writes into DIR:
 study.md and study.csv (status and reason, end time, cycles, wall time,
 element counts, peak force, maximum displacement; solid/hollow wall-time
 ratio where both end normally), fd_<speed>kmh.png (solid vs hollow),
@@ -109,6 +110,8 @@ def main(args: argparse.Namespace) -> int:
     solid = solid_hourglass_options(args)
     if args.hollow_from:
         calibrated = solid_control_of_calibration(args.hollow_from)
+        if args.solid_hourglass is None and solid:  # only a QM given: the calibration's IHQ
+            solid["hourglass_ihq"] = calibrated["hourglass_ihq"]
         if not solid:
             solid = calibrated  # the solid block the walls were fitted to
         elif solid != calibrated:

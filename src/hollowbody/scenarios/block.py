@@ -25,11 +25,12 @@ Choices (all written into the deck):
   thickness for the hollow block);
 - hourglass control of the solid block *HOURGLASS IHQ=6, QH=1 (assumed-strain
   stiffness, Belytschko-Bindeman): its force follows the fully integrated
-  hexahedron's within 15 % (docs/block.md). The Flanagan-Belytschko stiffness form
-  (IHQ=4, scaled by the bulk modulus, thousands of times the tissue's shear
-  modulus) about doubles the block's force, and the viscous form dissipates a
-  large share of the impact energy in nearly incompressible rubber (hourglass
-  energy above the internal energy with IHQ=1).
+  hexahedron's (within 20 % from 10 mm of travel, 2-4 % from 30 mm on;
+  docs/block.md). The Flanagan-Belytschko stiffness form (IHQ=4, scaled by the
+  bulk modulus, thousands of times the tissue's shear modulus) about doubles the
+  block's force, and the viscous form dissipates a large share of the impact
+  energy in nearly incompressible rubber (hourglass energy above the internal
+  energy with IHQ=1).
 """
 
 from __future__ import annotations
@@ -93,7 +94,7 @@ class BlockConfig:
     hourglass_ihq: int = SOLID_HOURGLASS[0]
     hourglass_qh: float = SOLID_HOURGLASS[1]
     #: *SECTION_SOLID ELFORM of the solid block: 1 one-point with the hourglass
-    #: control above, 2 fully integrated (no hourglass modes; about 5x the cost)
+    #: control above, 2 fully integrated (no hourglass modes; about 4x the cost)
     elform: int = 1
     # hollow structure (structure="hollow"); None -> the paper's fit for the tissue
     hollow_E: float | None = None  # MPa
@@ -363,7 +364,8 @@ def _add_hollow_block(deck, cfg: BlockConfig):
 
 #: Outcomes of a block impact by the impactor's maximum travel (see :func:`impact_outcome`)
 STOPPED, REACHED_BASE, THROUGH_BASE = "stopped", "reached the base", "through the base"
-#: the run ended (error termination) while the impactor was still pressing into the block
+#: the run ended otherwise than normally (an error termination, an interrupt) while the
+#: impactor was still pressing into the block
 NOT_STOPPED = "ended before it stopped"
 
 

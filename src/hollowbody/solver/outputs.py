@@ -232,7 +232,7 @@ class RunOutputs:
         #: the glstat record before the last one, with its time (an error termination's
         #: last record can be the collapse itself; the summary then keeps this one too)
         self.prev_energies: dict[str, float] = {}
-        self._energy_time = 0.0  # time of last_energies (ms)
+        self._energy_time: float | None = 0.0  # time of last_energies (ms)
         self._last_forced: tuple[int, float] | None = None
         #: (cycle, time) of each output's last row: a forced write at the end of a run
         #: does not write a row again that its interval wrote at the same state
@@ -245,7 +245,8 @@ class RunOutputs:
                 self.vtk.entries = [tuple(e) for e in resume["vtk_entries"]]
             self.last_energies = dict(resume["last_energies"])
             self.prev_energies = dict(resume.get("prev_energies", {}))
-            self._energy_time = float(resume.get("energy_time", 0.0))
+            # a dump written before the time was kept: no earlier record until two new ones
+            self._energy_time = resume.get("energy_time")
             forced = resume["last_forced"]
             self._last_forced = tuple(forced) if forced is not None else None
             self._rows_at = {k: tuple(v) for k, v in resume.get("rows_at", {}).items()}
@@ -280,7 +281,8 @@ class RunOutputs:
         key = (state.cycle, t)
         if self._due("glstat", key, force):
             e = energies(self.asm, state, self._full_step_v(state))
-            self.prev_energies = {**self.last_energies, "time_ms": self._energy_time}
+            self.prev_energies = ({} if self._energy_time is None else
+                                  {**self.last_energies, "time_ms": self._energy_time})
             self.last_energies, self._energy_time = e, t
             self.glstat.write([t, state.cycle, state.dt_next, e["kinetic"], e["internal"],
                                e["hourglass"], e["contact"], e["external_work"], e["total"],
@@ -465,7 +467,7 @@ class RunOutputs:
             "timing_seconds": dict(state.timing),
             "energy_ratio": last.get("energy_ratio"),
             "energies_J": last,
-            **before_error(status, last, self.prev_energies),
+            **before_error(status, last, self.prev_energies, self.thresholds),
             "warnings": state.monitors.warnings if state.monitors is not None else [],
             "mass_scaling": state.mass_scaling.summary(),
             "contact_pass_through": {

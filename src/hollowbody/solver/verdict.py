@@ -113,19 +113,27 @@ def _grade(value: float, warn: float, suspect: float) -> str | None:
     return None
 
 
+#: how far off 1 an error termination's last energy ratio must be, one output interval
+#: after a balanced record, to be read as the collapse itself (the energy more than
+#: doubled or gone; measured collapses: 1e12-1e39) rather than a drift out of balance
+COLLAPSE_JUMP = 1.0
+
+
 def before_error(status: str, last: dict, prev: dict,
                  thresholds: Thresholds | None = None) -> dict:
-    """Summary fields of an error termination whose last energy record is unbalanced
-    while the one before it is not (an element collapsing in the failing cycle):
-    ``energies_before_error_J`` (that record, with its ``time_ms``); {} otherwise."""
+    """Summary fields of an error termination whose last energy record is blown up
+    (energy ratio off 1 by more than :data:`COLLAPSE_JUMP`, or not finite) while the
+    record before it, one output interval earlier, is within the warning band (an
+    element collapsing in the last interval): ``energies_before_error_J`` (that record,
+    with its ``time_ms``); {} otherwise."""
     th = thresholds or Thresholds()
     if status == "normal termination" or not prev or "energy_ratio" not in prev:
         return {}
     r_last, r_prev = _num(last.get("energy_ratio")), _num(prev.get("energy_ratio"))
     if r_prev is None or abs(r_prev - 1.0) > th.energy_ratio_warn:
         return {}
-    if r_last is not None and abs(r_last - 1.0) <= th.energy_ratio_warn:
-        return {}
+    if r_last is not None and abs(r_last - 1.0) <= COLLAPSE_JUMP:
+        return {}  # not a collapse: a run drifting out of balance is graded as it ends
     return {"energies_before_error_J": dict(prev)}
 
 
@@ -151,7 +159,7 @@ def assess(summary: dict, thresholds: Thresholds | None = None) -> tuple[str, li
         r_ok, t_ok = _num(before.get("energy_ratio")), _num(before.get("time_ms"))
         add(WARNING, "failing_cycle", ratio,
             f"energy ratio {_fmt(ratio, '.3g')} in the failing cycle; {_fmt(r_ok, '.5g')}"
-            f" at t={_fmt(t_ok, '.6g')} ms before it")
+            f" at t={_fmt(t_ok, '.6g')} ms, one output interval before")
         ratio = r_ok
     if ratio is not None:
         add(_grade(abs(ratio - 1.0), th.energy_ratio_warn, th.energy_ratio_suspect),

@@ -145,8 +145,15 @@ def test_calibrate_solid_hourglass_goes_into_the_reference_and_the_cache_key():
         == (4, 0.1)
     assert hg4q.config("solid", 40.0).hourglass_qh == 0.05
     assert plain.describe()["solid_hourglass"] == [6, 1.0]
-    assert hg4q.describe()["solid_hourglass"] == [4, 0.05]
-    assert hg4.describe() != plain.describe() != hg4q.describe()
+    assert hg4.describe()["solid_hourglass"] == [4, 0.1]
+    # IHQ 4 QM 0.05 is what calibrations that record nothing were made with: recorded as
+    # nothing, so those resume and keep their caches; never also among the options
+    assert "solid_hourglass" not in hg4q.describe()
+    assert all(d.describe()["options"] == {} for d in (plain, hg4, hg4q))
+    descs = [json.dumps(d.describe(), sort_keys=True) for d in (plain, hg4, hg4q)]
+    assert len(set(descs)) == 3
+    _, explicit6 = build_settings(_parsed(["--solid-hourglass", "6"]))
+    assert explicit6.describe() == plain.describe()  # the default given is the default
 
 
 @pytest.mark.parametrize("argv, why", [
@@ -214,6 +221,7 @@ def test_study_runs_calibrated_walls_with_their_hourglass_control(tmp_path, caps
     (None, [], LEGACY_SOLID, False),
     ([6, 1.0], ["--solid-hourglass", "4", "--solid-hourglass-qm", "0.05"], LEGACY_SOLID, True),
     (None, ["--solid-hourglass", "6"], {"hourglass_ihq": 6, "hourglass_qh": 1.0}, True),
+    (None, ["--solid-hourglass-qm", "0.1"], {"hourglass_ihq": 4, "hourglass_qh": 0.1}, True),
 ])
 def test_study_runs_the_solid_block_the_walls_were_fitted_to(tmp_path, capsys, monkeypatch,
                                                              recorded, extra, expected, note):

@@ -139,6 +139,9 @@ def _energies(ratio: float, hourglass: float = 0.3, time_ms: float | None = None
     ("error termination", 4.9e26, 1.0002, True),   # collapse in the failing cycle
     ("error termination", 4.9e26, 1.28, False),    # unbalanced before it: no excuse
     ("error termination", 1.0001, 1.0002, False),  # balanced to the end
+    ("error termination", 1.25, 1.09, False),  # drifting out: graded as it ends
+    ("error termination", 2.5, 1.0002, True),  # energy more than doubled in one interval
+    ("error termination", float("nan"), 1.0002, True),  # not finite
     ("normal termination", 4.9e26, 1.0002, False),  # only error terminations
 ])
 def test_before_error_keeps_the_last_balanced_record(status, last, prev, kept):
@@ -150,6 +153,13 @@ def test_before_error_keeps_the_last_balanced_record(status, last, prev, kept):
         assert got["energies_before_error_J"]["energy_ratio"] == prev
         assert got["energies_before_error_J"]["time_ms"] == 3.86
     assert before_error("error termination", _energies(4.9e26), {}) == {}
+    # the first record's predecessor has no energies
+    assert before_error("error termination", _energies(4.9e26), {"time_ms": 0.0}) == {}
+    # a user's tighter band: 1.0002 is not balanced within 1e-4
+    from hollowbody.solver.verdict import Thresholds as T
+
+    assert before_error("error termination", _energies(4.9e26), _energies(1.0002, time_ms=1.0),
+                        T(energy_ratio_warn=1e-4)) == {}
 
 
 def test_an_error_terminations_failing_cycle_is_named_and_the_rest_graded_before_it():
@@ -164,7 +174,7 @@ def test_an_error_terminations_failing_cycle_is_named_and_the_rest_graded_before
     assert "energy_ratio" not in by  # 1.0002 before the failing cycle
     assert by["failing_cycle"]["level"] == WARNING
     assert "4.9e+26 in the failing cycle" in by["failing_cycle"]["message"]
-    assert "t=3.8601 ms" in by["failing_cycle"]["message"]
+    assert "t=3.8601 ms, one output interval before" in by["failing_cycle"]["message"]
     assert by["hourglass"]["level"] == WARNING and by["hourglass"]["value"] == pytest.approx(0.12)
     assert q == WARNING
 

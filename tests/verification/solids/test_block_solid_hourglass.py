@@ -5,7 +5,7 @@ The one-point hexahedra of the solid block need hourglass control; the block's d
 so the block must absorb the impactor's energy as the fully integrated element
 (ELFORM 2, no hourglass modes) does. Coarse 15 mm block at 40 km/h (309 J), energy
 absorbed (the contact force integrated over the impactor's travel) at 10-40 mm of
-travel: measured within 4 % of ELFORM 2 (44.7 / 72.5 / 122.7 / 179.7 J against
+travel: measured within 5 % of ELFORM 2 (44.7 / 72.5 / 122.7 / 179.7 J against
 44.7 / 73.5 / 120.7 / 187.6 J); the tolerance of 10 % allows the two forms' different
 handling of the elements under the impactor's edge on this coarse mesh and still
 fails the stiffness form scaled by the bulk modulus (IHQ 4, QM 0.05: 94.8 / 182.5 /
@@ -52,5 +52,5 @@ def test_default_solid_hourglass_absorbs_what_the_hourglass_free_element_does(
 def test_bulk_modulus_stiffness_form_is_twice_as_stiff(hourglass_free, tmp_path):
     w = _absorbed(BlockConfig(mesh=15.0, end_time=12.0, hourglass_ihq=4, hourglass_qh=0.05),
                   tmp_path)
-    n = min(len(w), 2)  # it stops the impactor at about 31 mm
-    assert np.all(w[:n] > 1.8 * hourglass_free[:n])
+    assert len(w) >= 2  # it stops the impactor at about 31 mm: 10 and 20 mm reached
+    assert np.all(w[:2] > 1.8 * hourglass_free[:2])
