@@ -62,6 +62,7 @@ from hollowbody.io.keyword import (
     ShellElements,
     SolidElements,
 )
+from hollowbody.scenarios.block import SOLID_HOURGLASS
 from hollowbody.tissues import tissue
 
 PID_BONE, PID_MUSCLE, PID_SKIN, PID_IMPACTOR = 1, 2, 3, 4
@@ -137,7 +138,9 @@ def limb_deck(segment: str = "thigh", length: float | None = None, n_theta: int 
     deck.add(DefineCurve(lcid=1, points=np.column_stack([m.strain, m.stress]).tolist(),
                          title="muscle: engineering stress [GPa] vs strain"))
     deck.add(MatElastic(mid=3, ro=SKIN["rho"], e=SKIN["E"], pr=SKIN["pr"], title="skin"))
-    deck.add(Hourglass(hgid=1, ihq=4, qm=0.05))
+    # the block test's and the pedestrian's control for the same MAT_181 muscle: the
+    # assumed-strain form adds no stiffness of its own (docs/block.md)
+    deck.add(Hourglass(hgid=1, ihq=SOLID_HOURGLASS[0], qm=SOLID_HOURGLASS[1]))
     return deck
 
 

@@ -57,6 +57,9 @@ def test_three_point_bending_deck(structure):
     assert len(model.spcs) == 2
     if structure == "hollow":
         assert PID_MUSCLE in {g.pid for g in model.shell_groups}
+    else:  # the solid muscle's control is the block test's (the assumed-strain form)
+        hg = model.hourglass_of(PID_MUSCLE)
+        assert (hg.ihq, hg.qm) == (6, pytest.approx(1.0))
 
 
 def test_runner_runs_or_skips(tmp_path):
