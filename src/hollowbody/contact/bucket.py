@@ -28,6 +28,8 @@ from numba import get_num_threads, njit, prange
 PARALLEL_MIN_NODES = 16384
 #: Items per parallel work unit (array arguments cost an incref/decref per call).
 _CHUNK = 256
+#: Blocks of nodes per thread in the threaded search (some balance for uneven cells).
+_BLOCKS_PER_THREAD = 2
 #: Bound on grid pairs per segment before the cell size is doubled.
 _MAX_PAIRS_PER_SEGMENT = 27
 #: Grids with at most this many cells (or 4 per grid pair) are dense: segments
@@ -165,58 +167,6 @@ def _excluded(s, i, nd, seg, mark):
 
 
 @njit(cache=True)
-def _cands_range(i0, i1, x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs,
-                 ex_ptr, ex_seg, ptr, out, fill, mark):
-    """Candidates of nodes i0 <= i < i1.
-
-    fill 0: count into ptr[i + 1]; 1: write into out from ptr[i] (ptr already
-    cumulative). mark (S,) int32: mark[s] == i leaves segment s out for node i. The node's
-    exclusion list is stamped into it once, so a box hit costs one look-up,
-    not a scan of the list (single-surface lists hold ~20 segments per node,
-    most of them box hits); stamps need no clearing (start at -1).
-    """
-    for i in range(i0, i1):
-        nd = nodes[i]
-        px = x[nd, 0]
-        py = x[nd, 1]
-        pz = x[nd, 2]
-        ci = _cell(px, origin[0], h)
-        cj = _cell(py, origin[1], h)
-        ck = _cell(pz, origin[2], h)
-        n = 0
-        base = ptr[i]
-        if 0 <= ci < dims[0] and 0 <= cj < dims[1] and 0 <= ck < dims[2]:
-            for e in range(ex_ptr[i], ex_ptr[i + 1]):
-                mark[ex_seg[e]] = i
-            q, q1 = _cell_range(ci + dims[0] * (cj + dims[1] * ck), skeys, cstart)
-            while q < q1:
-                s = ssegs[q]
-                q += 1
-                if (lo[s, 0] <= px <= hi[s, 0] and lo[s, 1] <= py <= hi[s, 1]
-                        and lo[s, 2] <= pz <= hi[s, 2]):
-                    if _excluded(s, i, nd, seg, mark):
-                        continue
-                    if fill == 1:
-                        out[base + n] = s
-                    n += 1
-        if fill == 0:
-            ptr[i + 1] = n
-
-
-@njit(cache=True, parallel=True)
-def _cands_par(x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr,
-               out, fill, mark):
-    """fill 0 or 1 of :func:`_cands_range`; mark (B, S): one stamp row per block
-    of nodes (B blocks, a few per thread)."""
-    n = nodes.shape[0]
-    nb = mark.shape[0]
-    per = (n + nb - 1) // nb
-    for b in prange(nb):
-        _cands_range(min(n, b * per), min(n, (b + 1) * per), x, nodes, seg, lo, hi, origin, h,
-                     dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr, out, fill, mark[b])
-
-
-@njit(cache=True)
 def _node_keys(x, nodes, origin, h, dims, keys):
     """keys (ns,) int64: the grid cell of each node, -1 outside the grid."""
     for i in range(nodes.shape[0]):
@@ -266,26 +216,28 @@ def _max_run(cstart, skeys):
 
 @njit(cache=True)
 def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, order, nkeys,
-                 cnt, start, tmp, box, hit, mark):
-    """Candidates of every node, cell by cell (serial).
+                 cnt, start, tmp, box, hit, mark, r0, r1, n0, cap):
+    """Candidates of the nodes order[r0:r1], cell by cell (serial).
 
     order (ns,): the node rows sorted by their cell nkeys (ns,) (-1: outside the
-    grid, no candidates). The boxes of a cell's segments are copied once into box
+    grid, no candidates); r0 and r1 fall on cell boundaries. Written into tmp from
+    n0 up to cap (exclusive). The boxes of a cell's segments are copied once into box
     (6, M) (M >= the most segments of a cell) and tested against each node of the
     cell without branches into hit (M,) uint8, a loop the compiler vectorises (a box
     test that branches mispredicts about one time in ten; measured on the crushed
     hollow block's self-contact: 11.2 -> 4.7 ms per search with the cell order); the
-    hits are then compacted and checked
-    against the node's exclusions (mark, as in :func:`_cands_range`). A node's
+    hits are then compacted and checked against the node's exclusions: mark (S,)
+    int32, mark[s] == i leaves segment s out for node row i; the node's exclusion list
+    is stamped into it once, so a hit costs one look-up, not a scan of the list
+    (stamps need no clearing: they start at -1). A node's
     candidates go to tmp from start[i] (cnt[i] of them), in the order of the grid's
-    segment list (as the threaded search). While tmp has no room for a node's whole
-    cell, nodes are only counted (box hits, an upper bound). Returns the number of
-    entries written or counted: all were written if it is <= tmp.size - M.
+    segment list. While tmp has no room before cap for a node's whole cell, nodes are
+    only counted (box hits, an upper bound). Returns the end of the entries written or
+    counted: all were written if it is <= cap - M.
     """
-    n = 0
-    r = 0
-    nn = order.shape[0]
-    cap = tmp.shape[0]
+    n = n0
+    r = r0
+    nn = r1
     while r < nn:
         key = nkeys[order[r]]
         r1 = r + 1
@@ -341,6 +293,48 @@ def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, or
     return n
 
 
+@njit(cache=True, parallel=True)
+def _cands_blocks(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, order, nkeys,
+                  cnt, start, tmp, box, hit, mark, rows, nbeg, ncap, nend):
+    """:func:`_cands_cells` of B blocks of nodes at once: block b takes order[rows[b]:
+    rows[b + 1]] into tmp[nbeg[b]:ncap[b]] with its own work arrays box[b], hit[b],
+    mark[b]; nend (B,) int64 out: each block's end (written if <= ncap[b] - M)."""
+    for b in prange(rows.shape[0] - 1):
+        nend[b] = _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg,
+                               order, nkeys, cnt, start, tmp, box[b], hit[b], mark[b],
+                               rows[b], rows[b + 1], nbeg[b], ncap[b])
+
+
+@njit(cache=True)
+def _block_rows(order, nkeys, skeys, cstart, nblocks, work):
+    """(B + 1,) int64 bounds splitting order (ns,) into blocks of about equal work (box
+    tests: the segments of each node's cell, from skeys / cstart) that start and end on
+    cell boundaries (a cell's nodes stay in one block); work (B,) int64 out: the box
+    tests of each block."""
+    nn = order.shape[0]
+    acc = np.zeros(nn + 1, np.int64)
+    for r in range(nn):
+        m = 0
+        key = nkeys[order[r]]
+        if key >= 0:
+            q0, q1 = _cell_range(key, skeys, cstart)
+            m = q1 - q0
+        acc[r + 1] = acc[r] + m + 1
+    rows = np.zeros(nblocks + 1, np.int64)
+    r = 0
+    for b in range(1, nblocks):
+        goal = (b * acc[nn]) // nblocks
+        while r < nn and acc[r] < goal:
+            r += 1
+        while 0 < r < nn and nkeys[order[r]] == nkeys[order[r - 1]]:
+            r += 1
+        rows[b] = r
+    rows[nblocks] = nn
+    for b in range(nblocks):
+        work[b] = acc[rows[b + 1]] - acc[rows[b]]
+    return rows
+
+
 @njit(cache=True)
 def _gather_rows(cnt, start, tmp, ptr, out):
     """CSR in node order: ptr (ns + 1,) from cnt (ns,), out the rows tmp[start[i]:][:cnt[i]]."""
@@ -382,10 +376,12 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     segment's bounding box to look (capture distance + margin).
     ex_ptr / ex_seg: optional CSR per node of segments to leave out (besides
     the segments that contain the node, always left out).
-    parallel: use the threaded kernels (default: when there are at least
-    PARALLEL_MIN_NODES nodes). size_hint: expected number of candidates (the
-    last sort's): the serial search then runs once into a buffer of about that
-    size (twice only when it overflows).
+    parallel: search blocks of nodes (whole grid cells, _BLOCKS_PER_THREAD per
+    thread) on numba's threads, each into its own part of one buffer (default:
+    when there are at least PARALLEL_MIN_NODES nodes); the lists are the serial
+    search's. size_hint: expected number of candidates (the last sort's): the
+    search then runs once into a buffer of about that size (twice only when a
+    block overflows its part).
     Returns ptr (ns + 1,) int64 and cand (ptr[-1],) int32 segment indices, each
     node's candidates in the order of the grid's segment list (the contact
     kernels' results do not depend on that order).
@@ -430,15 +426,6 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         order = np.argsort(keys)
         skeys = keys[order]
         ssegs = segs[order]
-    grid = (x, nodes, seg, lo, hi, origin, h, dims, skeys, cstart, ssegs, ex_ptr, ex_seg, ptr)
-    if parallel:
-        mark = np.full((min(4 * get_num_threads(), max(1, ns // _CHUNK)), seg.shape[0]), -1,
-                       np.int32)
-        _cands_par(*grid, np.zeros(0, np.int32), 0, mark)
-        np.cumsum(ptr, out=ptr)
-        cand = np.empty(int(ptr[-1]), np.int32)
-        _cands_par(*grid, cand, 1, mark)
-        return ptr, cand
     nkeys = np.empty(ns, np.int64)
     _node_keys(x, nodes, origin, h, dims, nkeys)
     if ncell <= _COUNT_CELLS_PER_NODE * ns:
@@ -446,19 +433,35 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     else:
         norder = np.argsort(nkeys, kind="stable")
     mx = int(_max_run(cstart, skeys))
-    box = np.empty((6, mx))
-    hit = np.empty(mx, np.uint8)
+    nb = min(_BLOCKS_PER_THREAD * get_num_threads(), max(1, ns // _CHUNK)) if parallel else 1
+    work = np.empty(nb, np.int64)
+    rows = _block_rows(norder, nkeys, skeys, cstart, nb, work)
+    box = np.empty((nb, 6, mx))
+    hit = np.empty((nb, mx), np.uint8)
+    mark = np.full((nb, seg.shape[0]), -1, np.int32)
     ncnt = np.empty(ns, np.int64)
     start = np.empty(ns, np.int64)
-    mark = np.full(seg.shape[0], -1, np.int32)
-    tmp = np.empty(max(1024, 4 * ns, (5 * size_hint) // 4) + mx, np.int32)
-    n = _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys,
-                     ncnt, start, tmp, box, hit, mark)
-    if n > tmp.shape[0] - mx:  # too small: n bounds the total, now it fits
-        tmp = np.empty(n + mx, np.int32)
+    # each block's room: its share (by box tests) of the expected total (the last
+    # sort's), plus a cell; a block alone gets all of it
+    room = max(1024, 4 * ns, (5 * size_hint) // 4)
+    need = room * np.ones(1, np.int64) if nb == 1 else \
+        (3 * room * work) // (2 * max(int(work.sum()), 1)) + 1
+    search = (x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys, ncnt,
+              start)
+    for _attempt in range(2):
+        ncap = np.cumsum(need + mx)
+        nbeg = ncap - need - mx
+        tmp = np.empty(int(ncap[-1]), np.int32)
+        nend = np.empty(nb, np.int64)
+        if parallel:
+            _cands_blocks(*search, tmp, box, hit, mark, rows, nbeg, ncap, nend)
+        else:
+            nend[0] = _cands_cells(*search, tmp, box[0], hit[0], mark[0], 0, ns, 0, ncap[0])
+        if np.all(nend <= ncap - mx):
+            break
+        # too small: nend - nbeg bounds each block's entries, now they fit
+        need = np.maximum(nend - nbeg, 0)
         mark[:] = -1
-        _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys,
-                     ncnt, start, tmp, box, hit, mark)
     cand = np.empty(int(ncnt.sum()), np.int32)
     _gather_rows(ncnt, start, tmp, ptr, cand)
     return ptr, cand

@@ -62,42 +62,19 @@ def _near(s, held, px, py, pz, lo, hi):
 
 
 @njit(cache=True)
-def _near_rows(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp, fill):
+def _near_rows_serial(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp):
     """Near pairs of rows i0 <= i < i1 (a listed pair whose box holds the node, and
     the node's current contact segment oseg[i]: it may hold the node deeper than
-    any box reaches).
+    any box reaches), written into ncand from ptr[i0]; row i's count into nptr[i + 1].
 
-    fill 0: count into nptr[i + 1]; 1: write into ncand from nptr[i] (nptr
-    already cumulative). Writing stamps mark[s] = stamp for every segment written (threads
-    may write the same stamp to the same entry: same value, no harm).
-    """
-    for i in range(i0, i1):
-        nd = nodes[i]
-        px = x[nd, 0]
-        py = x[nd, 1]
-        pz = x[nd, 2]
-        n = nptr[i] if fill != 0 else 0
-        held = oseg[i]
-        for q in range(ptr[i], ptr[i + 1]):
-            s = cand[q]
-            if _near(s, held, px, py, pz, lo, hi):
-                if fill != 0:
-                    ncand[n] = s
-                    mark[s] = stamp
-                n += 1
-        if fill == 0:
-            nptr[i + 1] = n
-
-
-@njit(cache=True)
-def _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp):
-    """:func:`_near_rows` of every row in one sweep (nptr[0] = 0 set by the caller),
-    without branches in the pair loop: each listed segment is written and the count
+    No branches in the pair loop: each listed segment is written and the count
     moves on only for a near pair (a box test that branches mispredicts about one
-    time in five; the far lists keep about a third of their pairs). ncand must
-    hold ptr[-1] entries (the write position never passes the read one)."""
-    n = 0
-    for i in range(nodes.shape[0]):
+    time in five; the far lists keep about a third of their pairs); the write
+    position never passes the read one. Stamps mark[s] = stamp for every segment
+    written (threads may write the same stamp to the same entry: same value, no
+    harm). Returns the end of the entries written."""
+    n = ptr[i0]
+    for i in range(i0, i1):
         nd = nodes[i]
         px = x[nd, 0]
         py = x[nd, 1]
@@ -110,7 +87,25 @@ def _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stam
             n += _near(s, held, px, py, pz, lo, hi)
         for q in range(n0, n):
             mark[ncand[q]] = stamp
-        nptr[i + 1] = n
+        nptr[i + 1] = n - n0
+    return n
+
+
+@njit(cache=True)
+def _compact(ptr, rows, nend, nptr, ncand):
+    """Near lists of row blocks rows[b]:rows[b + 1] (written from ptr[rows[b]] to
+    nend[b], row counts in nptr[i + 1]) moved into one CSR: nptr cumulative from 0.
+    Blocks only move towards the front (a near list is part of its far list)."""
+    w = 0
+    nptr[0] = 0
+    for b in range(rows.shape[0] - 1):
+        r = ptr[rows[b]]
+        if r != w:
+            for q in range(r, nend[b]):
+                ncand[w + q - r] = ncand[q]
+        w += nend[b] - r
+        for i in range(rows[b], rows[b + 1]):
+            nptr[i + 1] += nptr[i]
 
 
 @njit(cache=True)
@@ -143,28 +138,30 @@ def near_filter(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
     """
     _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
     nptr[0] = 0
-    _near_rows_serial(x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark, stamp)
+    _near_rows_serial(0, nodes.shape[0], x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark,
+                      stamp)
+    for i in range(nodes.shape[0]):
+        nptr[i + 1] += nptr[i]
     return _marked(mark, stamp, nsact)
 
 
 @njit(cache=True, parallel=True)
 def near_filter_parallel(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
-                         mark, stamp, nsact):
-    """Threaded :func:`near_filter` (same lists): count, offsets, write."""
+                         mark, stamp, nsact, nblocks):
+    """Threaded :func:`near_filter` (same lists): the boxes, then nblocks blocks of rows
+    at once, each written into its own far lists' place, then moved together."""
     ns = nodes.shape[0]
     nk = sact.shape[0]
     for c in prange((nk + _CHUNK - 1) // _CHUNK):
         _boxes_of(c * _CHUNK, min(nk, (c + 1) * _CHUNK), x, seg, grow, sact, lo, hi)
-    nch = (ns + _CHUNK - 1) // _CHUNK
-    for c in prange(nch):
-        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, oseg, lo, hi,
-                   nptr, ncand, mark, stamp, 0)
-    nptr[0] = 0
-    for i in range(ns):
-        nptr[i + 1] += nptr[i]
-    for c in prange(nch):
-        _near_rows(c * _CHUNK, min(ns, (c + 1) * _CHUNK), x, nodes, ptr, cand, oseg, lo, hi,
-                   nptr, ncand, mark, stamp, 1)
+    rows = np.empty(nblocks + 1, np.int64)
+    for b in range(nblocks + 1):
+        rows[b] = (b * ns) // nblocks
+    nend = np.empty(nblocks, np.int64)
+    for b in prange(nblocks):
+        nend[b] = _near_rows_serial(rows[b], rows[b + 1], x, nodes, ptr, cand, oseg, lo, hi,
+                                    nptr, ncand, mark, stamp)
+    _compact(ptr, rows, nend, nptr, ncand)
     return _marked(mark, stamp, nsact)
 
 

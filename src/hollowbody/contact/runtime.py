@@ -102,12 +102,13 @@ PENMAX = 0.4
 #: machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on one thread); the contact
 #: benchmark's plate (5,041 active rows) gains 1.14x (benchmarks/bench_contact.py).
 PARALLEL_MIN_ROWS = 4096
-#: The threaded near filter and bucket sort count each node's pairs in one sweep and
-#: write them in a second: on two threads that is the serial work again, plus the
-#: wake-ups, so they run threaded only from this many threads on, and for passes of
-#: at least PARALLEL_MIN_NODES nodes plus near pairs.
-TWO_SWEEP_MIN_THREADS = 3
-PARALLEL_MIN_NODES = 65536
+#: The near filter and the bucket sort run threaded (blocks of nodes, each written
+#: into its own part of the lists) for passes of at least this many nodes plus far
+#: pairs: the hollow block's self-contact (5,209 nodes, ~100,000 far pairs) sorts in
+#: ~7 ms, far above a wake-up.
+PARALLEL_MIN_NODES = 16384
+#: Blocks of rows per thread in the threaded near filter.
+FILTER_BLOCKS_PER_THREAD = 2
 #: Re-sort when the nodes have moved this fraction of the bucket margin along an axis
 #: relative to one common translation (:func:`hollowbody.contact.penalty.gather`).
 _RESORT_FRACTION = 0.5
@@ -254,12 +255,10 @@ class ContactRuntime:
         self.cdef = cdef
         #: release depth of solid faces / element depth (see set_penmax)
         self.penmax = PENMAX
-        #: per-cycle kernels threaded from this many active rows of a pass; the
-        #: count-then-write ones (near filter, bucket sort) from parallel_min_nodes
-        #: nodes plus near pairs and two_sweep_threads threads
+        #: per-cycle kernels threaded from this many active rows of a pass; the near
+        #: filter and bucket sort from parallel_min_nodes nodes plus far pairs
         self.parallel_min_rows = PARALLEL_MIN_ROWS
         self.parallel_min_nodes = PARALLEL_MIN_NODES
-        self.two_sweep_threads = TWO_SWEEP_MIN_THREADS
         self.sort_interval = max(1, int(model.controls.contact_sort_interval or 100))
         n = model.n_nodes
         x0 = np.asarray(model.node_x0 if x0 is None else x0, dtype=np.float64)
@@ -522,15 +521,15 @@ class ContactRuntime:
         self._last_sort = -(1 << 62)
 
     def _threaded(self, p: _Pass, sweeps: int = 1) -> bool:
-        """Use the threaded kernels for pass p. Per-cycle kernels (``sweeps=1``): p has
-        parallel_min_rows active rows and numba more than one thread. Near filter and
-        bucket sort (``sweeps=2``, count then write): p's nodes plus near pairs reach
-        parallel_min_nodes and numba runs two_sweep_threads threads (with fewer they
-        only repeat the serial work)."""
+        """Use the threaded kernels for pass p when numba runs more than one thread.
+        Per-cycle kernels (``sweeps=1``): p has parallel_min_rows active rows. Near
+        filter and bucket sort (``sweeps=2``): p's nodes plus far pairs reach
+        parallel_min_nodes."""
+        if get_num_threads() < 2:
+            return False
         if sweeps == 1:
-            return p.act.shape[0] >= self.parallel_min_rows and get_num_threads() > 1
-        return (p.nodes.shape[0] + int(p.nptr[-1]) >= self.parallel_min_nodes
-                and get_num_threads() >= max(2, self.two_sweep_threads))
+            return p.act.shape[0] >= self.parallel_min_rows
+        return p.nodes.shape[0] + int(p.cand.shape[0]) >= self.parallel_min_nodes
 
     def _filter(self) -> None:
         """Near lists of every pass from its far lists, at the current coordinates."""
@@ -539,9 +538,13 @@ class ContactRuntime:
             if p.seg.shape[0] == 0:
                 continue
             par = self._threaded(p, 2)
-            m = (near_filter_parallel if par else near_filter)(
-                self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand, p.oseg,
-                p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters, p._nsact)
+            args = (self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand,
+                    p.oseg, p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters,
+                    p._nsact)
+            if par:
+                m = near_filter_parallel(*args, FILTER_BLOCKS_PER_THREAD * get_num_threads())
+            else:
+                m = near_filter(*args)
             p.fact = p._nsact[:m]
             p.act = p._act_buf[:active_rows(p.nptr, p.oseg, p._act_buf)]
             p.othru[:] = -1  # rows left out are not rewritten (events already reported)

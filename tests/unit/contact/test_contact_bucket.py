@@ -78,9 +78,53 @@ def test_one_pass_buffer_overflow_and_hint_agree():
     assert small[1].size > 1024 + 4 * 300  # the first buffer overflowed
     big = bucket_sort(x, nodes, seg, grow, parallel=False, size_hint=10 ** 6)
     par = bucket_sort(x, nodes, seg, grow, parallel=True)
-    for p, c in (big, par):
+    par_hint = bucket_sort(x, nodes, seg, grow, parallel=True, size_hint=small[1].size)
+    for p, c in (big, par, par_hint):
         np.testing.assert_array_equal(p, small[0])
-        np.testing.assert_array_equal(np.sort(c), np.sort(small[1]))
+        np.testing.assert_array_equal(c, small[1])
+
+
+@pytest.mark.parametrize("per_thread", [1, 3, 50])
+def test_threaded_search_blocks_give_the_serial_lists(per_thread, monkeypatch):
+    """The threaded search splits the nodes into blocks of whole grid cells, each
+    written into its own part of one buffer (re-run when a block overflows its
+    part): any number of blocks, more blocks than cells included, gives the serial
+    lists entry for entry."""
+    monkeypatch.setattr(bucket, "_BLOCKS_PER_THREAD", per_thread)
+    monkeypatch.setattr(bucket, "_CHUNK", 1)
+    rng = np.random.default_rng(11)
+    x, seg = _random_mesh(rng, 400, 500, spread=9.0)
+    nodes = rng.permutation(400)[:350].astype(np.int32)
+    grow = rng.uniform(0.5, 3.0, size=500)
+    ser = bucket_sort(x, nodes, seg, grow, parallel=False)
+    assert ser[1].size > 1024 + 4 * 350  # a first buffer without a hint overflows
+    for hint in (0, ser[1].size // 3, ser[1].size):
+        par = bucket_sort(x, nodes, seg, grow, parallel=True, size_hint=hint)
+        np.testing.assert_array_equal(par[0], ser[0])
+        np.testing.assert_array_equal(par[1], ser[1])
+
+
+def test_block_rows_keep_cells_whole():
+    """Block bounds fall on cell boundaries, ascend, cover every node, and split the
+    work (the segments of each node's cell, plus one per node) as evenly as whole
+    cells allow."""
+    sizes = np.array([5, 1, 0, 7, 3, 3, 9, 1, 1, 2])
+    keys = np.repeat(np.arange(10), sizes).astype(np.int64)
+    segs_in_cell = np.array([4, 0, 2, 30, 1, 1, 5, 0, 9, 3])
+    cstart = np.concatenate([[0], np.cumsum(segs_in_cell)]).astype(np.int64)
+    order = np.arange(keys.size)
+    per_node = segs_in_cell[keys] + 1
+    for nb in (1, 2, 3, 7, 40):
+        work = np.empty(nb, np.int64)
+        rows = bucket._block_rows(order, keys, keys[:0], cstart, nb, work)
+        assert rows[0] == 0 and rows[-1] == keys.size and np.all(np.diff(rows) >= 0)
+        for r in rows[1:-1]:
+            assert r in (0, keys.size) or keys[r] != keys[r - 1]
+        for b in range(nb):
+            assert work[b] == per_node[rows[b]:rows[b + 1]].sum()
+    work = np.empty(2, np.int64)
+    rows = bucket._block_rows(order, keys, keys[:0], cstart, 2, work)
+    assert rows[1] == 13  # cell 3 (7 nodes x 31) is most of the work: cut after it
 
 
 @pytest.mark.parametrize("grid", ["dense", "sparse"])
@@ -134,18 +178,20 @@ def test_near_filter_serial_and_threaded_equal_the_box_test():
         inside = np.all((lo[row] <= x[i]) & (x[i] <= hi[row]), axis=1) | (row == oseg[i])
         want.append(row[inside])
     out = []
-    for fn in (near_filter, near_filter_parallel):
+    for fn, extra in ((near_filter, ()), (near_filter_parallel, (1,)),
+                      (near_filter_parallel, (4,)), (near_filter_parallel, (7,))):
         nptr = np.zeros(301, np.int64)
         ncand = np.empty(cand.size, np.int32)
         nsact = np.zeros(400, np.int32)
         m = fn(x, nodes, seg, grow, ptr, cand, oseg, sact, np.zeros((400, 3)),
-               np.zeros((400, 3)), nptr, ncand, np.zeros(400, np.int64), 1, nsact)
+               np.zeros((400, 3)), nptr, ncand, np.zeros(400, np.int64), 1, nsact, *extra)
         for i in range(300):
             np.testing.assert_array_equal(ncand[nptr[i]:nptr[i + 1]], want[i])
         out.append(nsact[:m].copy())
     assert 0 < nptr[-1] < cand.size
     np.testing.assert_array_equal(out[0], np.unique(np.concatenate(want)))
-    np.testing.assert_array_equal(out[1], out[0])
+    for o in out[1:]:
+        np.testing.assert_array_equal(o, out[0])
 
 
 def test_cell_order_is_a_stable_sort():

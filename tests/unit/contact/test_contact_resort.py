@@ -217,7 +217,6 @@ def test_random_motion_with_friction_and_erosion(parallel, kind):
     if parallel:
         a.parallel_min_nodes = 0
         a.parallel_min_rows = 0
-        a.two_sweep_threads = 2
     twin, _ = _pair(model, "single_surface", fs=0.2, fd=0.1)
     x = model.node_x0.copy()
     v = rng.normal(0.0, 0.3, size=x.shape)
