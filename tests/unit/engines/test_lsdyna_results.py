@@ -205,6 +205,45 @@ def test_histories_and_summary_written_with_hollowbodys_columns(tmp_path):
     assert s["energy_ratio"] == 1.00008 and s["energies_J"]["internal"] == 0.49
 
 
+def _glstat_row(t, ratio, internal=10.0):
+    # time, cycle, dt, kinetic, internal, hourglass, contact, external work, total,
+    # energy ratio, added mass
+    return [t, 10.0 * t, 1.0e-3, 90.0, internal, 0.5, 0.1, 0.0, 100.0 * ratio, ratio, 0.0]
+
+
+@pytest.mark.parametrize(("status", "last_ratio", "kept"), [
+    (ERROR, 4.9e26, True),          # the collapse in the last interval
+    (ERROR, math.nan, True),        # not finite
+    (ERROR, 1.3, False),            # drifting out of balance: graded as it ends
+    (NORMAL, 4.9e26, False),        # a normal termination is graded as it ends
+])
+def test_an_engine_collapse_is_graded_on_the_record_before_it(tmp_path, status, last_ratio,
+                                                             kept):
+    """An external engine's error termination whose last energy record is blown up (an
+    element collapsing in the last output interval) keeps the balanced record before it
+    as energies_before_error_J, with its time, as a hollowbody run does; the verdict is
+    graded on it and names the failing cycle. A drift or a normal end is not excused."""
+    from hollowbody.solver.verdict import SUSPECT, WARNING, verdict_of
+
+    glstat = [_glstat_row(0.0, 1.0), _glstat_row(1.0, 1.0001),
+              _glstat_row(2.0, last_ratio, internal=1.0e30)]
+    s = write_summary(tmp_path, engine="openradioss", version="x", status=status,
+                      reason="r", where={}, end_time_ms=2.0, requested_end_time_ms=5.0,
+                      cycles=20, wall_seconds=1.0, glstat=glstat, commands=[], notes=[])
+    assert json.loads((tmp_path / "summary.json").read_text()) == json.loads(
+        json.dumps(s))
+    quality, reasons = verdict_of(s)
+    if kept:
+        before = s["energies_before_error_J"]
+        assert before["time_ms"] == 1.0 and before["energy_ratio"] == 1.0001
+        assert before["internal"] == 10.0
+        assert quality == WARNING
+        assert [r["indicator"] for r in reasons] == ["failing_cycle"]
+    else:
+        assert "energies_before_error_J" not in s
+        assert quality == SUSPECT
+
+
 def test_a_row_of_the_wrong_width_is_refused(tmp_path):
     with pytest.raises(ValueError, match="columns"):
         write_histories(tmp_path, {"glstat": [[0.0, 1.0]]})
