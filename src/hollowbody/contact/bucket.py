@@ -21,15 +21,18 @@ so a large, sparse model costs nothing extra.
 from __future__ import annotations
 
 import numpy as np
-from numba import get_num_threads, njit, prange
+from numba import get_num_threads, njit, prange, set_parallel_chunksize
 
 #: Fewer slave nodes than this: serial kernels (thread wake-up costs more;
 #: on a machine busier than its cores, OpenMP's spinning threads far more).
 PARALLEL_MIN_NODES = 16384
 #: Items per parallel work unit (array arguments cost an incref/decref per call).
 _CHUNK = 256
-#: Blocks of nodes per thread in the threaded search (some balance for uneven cells).
+#: Blocks of nodes per thread in the threaded search, handed out to the threads one at
+#: a time (dynamic scheduling: some balance when the box tests are estimated badly).
 _BLOCKS_PER_THREAD = 2
+#: Fewest nodes of a block in the threaded search.
+_MIN_BLOCK_NODES = 256
 #: Bound on grid pairs per segment before the cell size is doubled.
 _MAX_PAIRS_PER_SEGMENT = 27
 #: Grids with at most this many cells (or 4 per grid pair) are dense: segments
@@ -216,12 +219,12 @@ def _max_run(cstart, skeys):
 
 @njit(cache=True)
 def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, order, nkeys,
-                 cnt, start, tmp, box, hit, mark, r0, r1, n0, cap):
-    """Candidates of the nodes order[r0:r1], cell by cell (serial).
+                 cnt, start, tmp, box, hit, mark, rbegin, rend, nbegin, cap):
+    """Candidates of the nodes order[rbegin:rend], cell by cell (serial).
 
     order (ns,): the node rows sorted by their cell nkeys (ns,) (-1: outside the
-    grid, no candidates); r0 and r1 fall on cell boundaries. Written into tmp from
-    n0 up to cap (exclusive). The boxes of a cell's segments are copied once into box
+    grid, no candidates); rbegin and rend fall on cell boundaries. Written into tmp
+    from nbegin up to cap (exclusive). The boxes of a cell's segments are copied once into box
     (6, M) (M >= the most segments of a cell) and tested against each node of the
     cell without branches into hit (M,) uint8, a loop the compiler vectorises (a box
     test that branches mispredicts about one time in ten; measured on the crushed
@@ -235,9 +238,9 @@ def _cands_cells(x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, or
     only counted (box hits, an upper bound). Returns the end of the entries written or
     counted: all were written if it is <= cap - M.
     """
-    n = n0
-    r = r0
-    nn = r1
+    n = nbegin
+    r = rbegin
+    nn = rend
     while r < nn:
         key = nkeys[order[r]]
         r1 = r + 1
@@ -380,8 +383,8 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     thread) on numba's threads, each into its own part of one buffer (default:
     when there are at least PARALLEL_MIN_NODES nodes); the lists are the serial
     search's. size_hint: expected number of candidates (the last sort's): the
-    search then runs once into a buffer of about that size (twice only when a
-    block overflows its part).
+    search then runs once into a buffer of about that size (twice, every block
+    again with exact room, only when a block overflows its part).
     Returns ptr (ns + 1,) int64 and cand (ptr[-1],) int32 segment indices, each
     node's candidates in the order of the grid's segment list (the contact
     kernels' results do not depend on that order).
@@ -433,7 +436,9 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     else:
         norder = np.argsort(nkeys, kind="stable")
     mx = int(_max_run(cstart, skeys))
-    nb = min(_BLOCKS_PER_THREAD * get_num_threads(), max(1, ns // _CHUNK)) if parallel else 1
+    nb = min(_BLOCKS_PER_THREAD * get_num_threads(), max(1, ns // _MIN_BLOCK_NODES)) \
+        if parallel else 1
+    parallel = parallel and nb > 1
     work = np.empty(nb, np.int64)
     rows = _block_rows(norder, nkeys, skeys, cstart, nb, work)
     box = np.empty((nb, 6, mx))
@@ -454,12 +459,16 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         tmp = np.empty(int(ncap[-1]), np.int32)
         nend = np.empty(nb, np.int64)
         if parallel:
-            _cands_blocks(*search, tmp, box, hit, mark, rows, nbeg, ncap, nend)
+            old_chunk = set_parallel_chunksize(1)
+            try:
+                _cands_blocks(*search, tmp, box, hit, mark, rows, nbeg, ncap, nend)
+            finally:
+                set_parallel_chunksize(old_chunk)
         else:
             nend[0] = _cands_cells(*search, tmp, box[0], hit[0], mark[0], 0, ns, 0, ncap[0])
         if np.all(nend <= ncap - mx):
             break
-        # too small: nend - nbeg bounds each block's entries, now they fit
+        # too small: nend - nbeg bounds each block's entries; all blocks again, now they fit
         need = np.maximum(nend - nbeg, 0)
         mark[:] = -1
     cand = np.empty(int(ncnt.sum()), np.int32)

@@ -72,7 +72,9 @@ def _near_rows_serial(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, ma
     time in five; the far lists keep about a third of their pairs); the write
     position never passes the read one. Stamps mark[s] = stamp for every segment
     written (threads may write the same stamp to the same entry: same value, no
-    harm). Returns the end of the entries written."""
+    harm). Returns the end of the entries written. Far lists start at ptr[0] == 0
+    (every producer: bucket sort, distance cut, keep_current), so one block over every
+    row leaves CSR near lists once its counts are summed."""
     n = ptr[i0]
     for i in range(i0, i1):
         nd = nodes[i]
@@ -149,7 +151,8 @@ def near_filter(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
 def near_filter_parallel(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
                          mark, stamp, nsact, nblocks):
     """Threaded :func:`near_filter` (same lists): the boxes, then nblocks blocks of rows
-    at once, each written into its own far lists' place, then moved together."""
+    at once, each written into its own far lists' place, then moved together (callers
+    hand the blocks out one at a time: ``numba.set_parallel_chunksize(1)``)."""
     ns = nodes.shape[0]
     nk = sact.shape[0]
     for c in prange((nk + _CHUNK - 1) // _CHUNK):

@@ -39,7 +39,7 @@ import math
 from typing import ClassVar
 
 import numpy as np
-from numba import get_num_threads
+from numba import get_num_threads, set_parallel_chunksize
 
 from hollowbody.contact.bucket import bucket_sort
 from hollowbody.contact.checks import clean_surface, segment_elements
@@ -104,8 +104,8 @@ PENMAX = 0.4
 PARALLEL_MIN_ROWS = 4096
 #: The near filter and the bucket sort run threaded (blocks of nodes, each written
 #: into its own part of the lists) for passes of at least this many nodes plus far
-#: pairs: the hollow block's self-contact (5,209 nodes, ~100,000 far pairs) sorts in
-#: ~7 ms, far above a wake-up.
+#: pairs: the crushed hollow block's self-contact (5,209 nodes, ~105,000 far pairs)
+#: sorts in 3.6 ms and filters in ~0.5 ms on one thread, above a wake-up (BENCHMARKS.md).
 PARALLEL_MIN_NODES = 16384
 #: Blocks of rows per thread in the threaded near filter.
 FILTER_BLOCKS_PER_THREAD = 2
@@ -498,7 +498,7 @@ class ContactRuntime:
         self._near_margin = NEAR_MARGIN * lseg
         for p in self.passes:
             p.ptr, p.cand = bucket_sort(self._xl, p.nodes, p.seg, p.capture + self._margin,
-                                        p.ex_ptr, p.ex_seg, self._threaded(p, 2),
+                                        p.ex_ptr, p.ex_seg, self._threaded(p, lists=True),
                                         size_hint=p.n_box_pairs)
             p.n_box_pairs = p.cand.shape[0]
             # re-sorted when a side of the displacements' box reaches the margin: node and
@@ -520,14 +520,14 @@ class ContactRuntime:
         forces do not change: the lists only have to be complete."""
         self._last_sort = -(1 << 62)
 
-    def _threaded(self, p: _Pass, sweeps: int = 1) -> bool:
+    def _threaded(self, p: _Pass, lists: bool = False) -> bool:
         """Use the threaded kernels for pass p when numba runs more than one thread.
-        Per-cycle kernels (``sweeps=1``): p has parallel_min_rows active rows. Near
-        filter and bucket sort (``sweeps=2``): p's nodes plus far pairs reach
-        parallel_min_nodes."""
+        Per-cycle kernels: p has parallel_min_rows active rows. The kernels that make
+        the lists (``lists``: near filter and bucket sort): p's nodes plus far pairs
+        reach parallel_min_nodes."""
         if get_num_threads() < 2:
             return False
-        if sweeps == 1:
+        if not lists:
             return p.act.shape[0] >= self.parallel_min_rows
         return p.nodes.shape[0] + int(p.cand.shape[0]) >= self.parallel_min_nodes
 
@@ -537,12 +537,16 @@ class ContactRuntime:
         for p in self.passes:
             if p.seg.shape[0] == 0:
                 continue
-            par = self._threaded(p, 2)
+            par = self._threaded(p, lists=True)
             args = (self._xl, p.nodes, p.seg, p.capture + self._near_margin, p.ptr, p.cand,
                     p.oseg, p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters,
                     p._nsact)
             if par:
-                m = near_filter_parallel(*args, FILTER_BLOCKS_PER_THREAD * get_num_threads())
+                old_chunk = set_parallel_chunksize(1)  # blocks handed out one at a time
+                try:
+                    m = near_filter_parallel(*args, FILTER_BLOCKS_PER_THREAD * get_num_threads())
+                finally:
+                    set_parallel_chunksize(old_chunk)
             else:
                 m = near_filter(*args)
             p.fact = p._nsact[:m]

@@ -91,7 +91,7 @@ def test_threaded_search_blocks_give_the_serial_lists(per_thread, monkeypatch):
     part): any number of blocks, more blocks than cells included, gives the serial
     lists entry for entry."""
     monkeypatch.setattr(bucket, "_BLOCKS_PER_THREAD", per_thread)
-    monkeypatch.setattr(bucket, "_CHUNK", 1)
+    monkeypatch.setattr(bucket, "_MIN_BLOCK_NODES", 1)
     rng = np.random.default_rng(11)
     x, seg = _random_mesh(rng, 400, 500, spread=9.0)
     nodes = rng.permutation(400)[:350].astype(np.int32)
