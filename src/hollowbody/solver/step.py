@@ -176,7 +176,9 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
             dt_crit, elem, pid = ms.critical_step()
     state.dt_next = plan.tssfac * dt_crit
     state.dt_crit_elem = (elem, pid)
+    t4 = time.perf_counter()
     state.dt_contact = _contact_limit(plan, state)
+    state.timing["contact"] += time.perf_counter() - t4  # the contacts' step limit
     if ended is not None:
         raise ended
     if ms.target > 0.0 and ms.percent_added > model.controls.endmas:
