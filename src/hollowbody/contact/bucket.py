@@ -20,6 +20,9 @@ so a large, sparse model costs nothing extra.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+
 import numpy as np
 from numba import get_num_threads, njit, prange, set_parallel_chunksize
 
@@ -42,6 +45,17 @@ _DENSE_PER_PAIR = 4
 #: Nodes are put in cell order by a counting sort while the grid has at most this
 #: many cells per node, else by an argsort of their cells.
 _COUNT_CELLS_PER_NODE = 4
+
+
+@contextmanager
+def dynamic_blocks() -> Iterator[None]:
+    """Inside the block numba hands a prange's iterations to the threads one at a
+    time (chunk size 1), as the threaded search's blocks of uneven work want."""
+    old = set_parallel_chunksize(1)
+    try:
+        yield
+    finally:
+        set_parallel_chunksize(old)
 
 
 @njit(cache=True, inline="always")
@@ -449,7 +463,7 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
     # each block's room: its share (by box tests) of the expected total (the last
     # sort's), plus a cell; a block alone gets all of it
     room = max(1024, 4 * ns, (5 * size_hint) // 4)
-    need = room * np.ones(1, np.int64) if nb == 1 else \
+    need = np.full(1, room, np.int64) if nb == 1 else \
         (3 * room * work) // (2 * max(int(work.sum()), 1)) + 1
     search = (x, nodes, seg, lo, hi, skeys, cstart, ssegs, ex_ptr, ex_seg, norder, nkeys, ncnt,
               start)
@@ -459,11 +473,8 @@ def bucket_sort(x: np.ndarray, nodes: np.ndarray, seg: np.ndarray, grow: np.ndar
         tmp = np.empty(int(ncap[-1]), np.int32)
         nend = np.empty(nb, np.int64)
         if parallel:
-            old_chunk = set_parallel_chunksize(1)
-            try:
+            with dynamic_blocks():
                 _cands_blocks(*search, tmp, box, hit, mark, rows, nbeg, ncap, nend)
-            finally:
-                set_parallel_chunksize(old_chunk)
         else:
             nend[0] = _cands_cells(*search, tmp, box[0], hit[0], mark[0], 0, ns, 0, ncap[0])
         if np.all(nend <= ncap - mx):

@@ -72,9 +72,7 @@ def _near_rows_serial(i0, i1, x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, ma
     time in five; the far lists keep about a third of their pairs); the write
     position never passes the read one. Stamps mark[s] = stamp for every segment
     written (threads may write the same stamp to the same entry: same value, no
-    harm). Returns the end of the entries written. Far lists start at ptr[0] == 0
-    (every producer: bucket sort, distance cut, keep_current), so one block over every
-    row leaves CSR near lists once its counts are summed."""
+    harm). Returns the end of the entries written."""
     n = ptr[i0]
     for i in range(i0, i1):
         nd = nodes[i]
@@ -139,11 +137,11 @@ def near_filter(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, nptr, ncand,
     Returns m.
     """
     _boxes_of(0, sact.shape[0], x, seg, grow, sact, lo, hi)
-    nptr[0] = 0
-    _near_rows_serial(0, nodes.shape[0], x, nodes, ptr, cand, oseg, lo, hi, nptr, ncand, mark,
-                      stamp)
-    for i in range(nodes.shape[0]):
-        nptr[i + 1] += nptr[i]
+    rows = np.array([0, nodes.shape[0]], np.int64)
+    nend = np.empty(1, np.int64)
+    nend[0] = _near_rows_serial(0, nodes.shape[0], x, nodes, ptr, cand, oseg, lo, hi, nptr,
+                                ncand, mark, stamp)
+    _compact(ptr, rows, nend, nptr, ncand)
     return _marked(mark, stamp, nsact)
 
 
@@ -152,7 +150,7 @@ def near_filter_parallel(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, npt
                          mark, stamp, nsact, nblocks):
     """Threaded :func:`near_filter` (same lists): the boxes, then nblocks blocks of rows
     at once, each written into its own far lists' place, then moved together (callers
-    hand the blocks out one at a time: ``numba.set_parallel_chunksize(1)``)."""
+    hand the blocks out one at a time: :func:`~hollowbody.contact.bucket.dynamic_blocks`)."""
     ns = nodes.shape[0]
     nk = sact.shape[0]
     for c in prange((nk + _CHUNK - 1) // _CHUNK):

@@ -39,9 +39,9 @@ import math
 from typing import ClassVar
 
 import numpy as np
-from numba import get_num_threads, set_parallel_chunksize
+from numba import get_num_threads
 
-from hollowbody.contact.bucket import bucket_sort
+from hollowbody.contact.bucket import bucket_sort, dynamic_blocks
 from hollowbody.contact.checks import clean_surface, segment_elements
 from hollowbody.contact.detect import detect_pass, detect_pass_serial
 from hollowbody.contact.exclusion import (
@@ -542,11 +542,8 @@ class ContactRuntime:
                     p.oseg, p.sact, p._lo, p._hi, p.nptr, p.ncand, p._mark, self.n_filters,
                     p._nsact)
             if par:
-                old_chunk = set_parallel_chunksize(1)  # blocks handed out one at a time
-                try:
+                with dynamic_blocks():
                     m = near_filter_parallel(*args, FILTER_BLOCKS_PER_THREAD * get_num_threads())
-                finally:
-                    set_parallel_chunksize(old_chunk)
             else:
                 m = near_filter(*args)
             p.fact = p._nsact[:m]
