@@ -37,7 +37,6 @@ contact. Away from the ends the result is the same as with any other padding
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import filtfilt
 
 #: Ratio of the J211 design frequency of one 2-pole pass to the class (w_d / 2 pi CFC).
 DESIGN_RATIO = 2.0775
@@ -89,4 +88,6 @@ def cfc_filter(t: np.ndarray, y: np.ndarray, cfc: float) -> np.ndarray:
     if not dt_s > 0.0 or DESIGN_RATIO * cfc * dt_s >= MAX_DESIGN_FRACTION:
         return y.copy()
     b, a = j211_coefficients(cfc, dt_s)
+    from scipy.signal import filtfilt  # imported here: scipy.signal takes ~1 s to load
+
     return filtfilt(b, a, y, padtype="odd", padlen=y.size - 1)

@@ -87,8 +87,8 @@ def _shell_layers(rt, conn: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.n
     tau = np.asarray(rt.tau)  # (e, 2) transverse shear xz, yz
     loc[:, :, 0, 2] = loc[:, :, 2, 0] = tau[:, None, 0]
     loc[:, :, 1, 2] = loc[:, :, 2, 1] = tau[:, None, 1]
-    r = shell_frames(conn, x)  # rows e1 e2 e3: global = R^T S R
-    glob = np.einsum("eai,elab,ebj->elij", r, loc, r)
+    r = shell_frames(conn, x)[:, None]  # rows e1 e2 e3: global = R^T S R
+    glob = np.swapaxes(r, 2, 3) @ loc @ r
     stress[:] = glob[:, :, [0, 1, 2, 0, 1, 2], [0, 1, 2, 1, 2, 0]]
     eps[:] = np.asarray(rt.epsp)[:, pick]
     return stress, eps

@@ -124,6 +124,33 @@ def test_shell_frame_rotates_stress_to_global() -> None:
     np.testing.assert_allclose(frame[2], q[:, 2], atol=1e-12)  # normal of the turned plane
 
 
+def test_shell_layer_stress_in_global_axes() -> None:
+    """The layers' stresses written for a turned shell: a pure local sigma_xx of 2 GPa
+    (a 1-2 shear of 0.5, transverse shears 0.1 / 0.2) comes out as R^T S R with R the
+    shell's frame, for the first, middle and last point; plastic strains as given."""
+    from types import SimpleNamespace
+
+    from hollowbody.solver.d3plot_output import _shell_layers
+
+    rng = np.random.default_rng(5)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    x = np.array([[0.0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0]]) @ q.T
+    conn = np.array([[0, 1, 2, 3]])
+    sig = np.zeros((1, 5, 3))
+    sig[0, :, 0] = [2.0, 0.0, 1.0, 0.0, -2.0]
+    sig[0, :, 2] = 0.5
+    rt = SimpleNamespace(sig=sig, tau=np.array([[0.1, 0.2]]),
+                         epsp=np.array([[0.3, 0.0, 0.1, 0.0, 0.4]]))
+    stress, eps = _shell_layers(rt, conn, x)
+    r = shell_frames(conn, x)[0]
+    for layer, point in enumerate((0, 2, 4)):
+        s = np.array([[sig[0, point, 0], 0.5, 0.1], [0.5, 0.0, 0.2], [0.1, 0.2, 0.0]])
+        g = r.T @ s @ r
+        np.testing.assert_allclose(stress[0, layer], [g[0, 0], g[1, 1], g[2, 2], g[0, 1],
+                                                      g[1, 2], g[2, 0]], atol=1e-14)
+    np.testing.assert_array_equal(eps[0], [0.3, 0.1, 0.4])
+
+
 def test_d3plot_beams(tmp_path: Path) -> None:
     """The swinging cantilever example: beam ids, nodes and part, and its resultants in
     every state (the root moment of a clamped beam is not zero once it swings)."""
