@@ -4,9 +4,10 @@ fixed base).
 With SOFT=1 the penalty spring on a fixed node comes from that node's (small)
 mass: k G (G the penetration at release) is ~0.1 kN per node, far below what
 stops a 5 kg plate at 25 mm/ms (1.56 kJ within a few mm).
-Pairs of rigid and fixed nodes get the stiffened zone, bounded by the rigid
-body's mass per node: the plate must stop and rebound without any node pushed
-through; without it (the check that this test can fail) the plate passes.
+Every contact has the stiffened zone, and pairs of rigid and fixed nodes keep it
+(bounded by the rigid body's mass per node) when a contact has it switched off:
+the plate must stop and rebound without any node pushed through; without both
+(the check that this test can fail) the plate passes.
 """
 
 import json
@@ -48,14 +49,33 @@ def test_rigid_plate_is_stopped_by_a_fixed_base(tmp_path):
     assert np.abs(spc["fz [kN]"]).max() > 10.0
 
 
-def test_without_the_rigid_fixed_stiffening_the_plate_passes(tmp_path, monkeypatch):
+def test_without_the_stiffened_zone_the_plate_passes(tmp_path, monkeypatch):
+    """Every contact has the stiffened zone, and rigid-on-fixed pairs keep it when a
+    contact has it switched off: with both taken away the plate passes."""
     orig = ContactRuntime.__init__
 
     def no_imm(self, *a, **kw):
         orig(self, *a, **kw)
         self._imm[:] = 0
+        self.set_stiffening(1.0)
 
     monkeypatch.setattr(ContactRuntime, "__init__", no_imm)
     res, rb, s = _run(tmp_path)
     assert s["contact_pass_through"]["1"]["events"] > 0
     assert rb["uz [mm]"].min() < -10.0
+
+
+def test_rigid_fixed_pairs_keep_the_stiffened_zone_when_it_is_off(tmp_path, monkeypatch):
+    """The stiffened zone switched off for the contact (set_stiffening(1.0)): the
+    rigid-on-fixed pairs still get it, and the plate is stopped."""
+    orig = ContactRuntime.__init__
+
+    def off(self, *a, **kw):
+        orig(self, *a, **kw)
+        self.set_stiffening(1.0)
+
+    monkeypatch.setattr(ContactRuntime, "__init__", off)
+    res, rb, s = _run(tmp_path)
+    assert res.status == "normal termination"
+    assert s["contact_pass_through"]["1"]["events"] == 0
+    assert rb["uz [mm]"].min() > -(0.1 + 5.5)
