@@ -145,6 +145,14 @@ def wall_control_of_calibration(path: str | Path) -> dict:
     return wall_control(_calibration_data(path))
 
 
+def wall_geometry_of_calibration(path: str | Path) -> dict:
+    """The walls' geometry a ``calibration.json`` was run with (BlockConfig fields, e.g.
+    ``cell``; {} for the block's)."""
+    from hollowbody.calibrate.wall import wall_geometry
+
+    return wall_geometry(_calibration_data(path))
+
+
 def solid_control_of_calibration(path: str | Path) -> dict:
     """The solid reference's hourglass control a ``calibration.json`` was run with
     (BlockConfig fields ``hourglass_ihq``, ``hourglass_qh``)."""

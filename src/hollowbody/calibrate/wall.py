@@ -28,6 +28,17 @@ def effective_wall(data: dict) -> dict[str, float] | None:
 WALL_CONTROL_FIELDS = ("wall_hourglass_ihq", "wall_hourglass_qh")
 
 
+#: BlockConfig fields of the walls' geometry that a calibration records in its simulator
+#: options when they are not the block's (a study of calibrated walls builds the same).
+WALL_GEOMETRY_FIELDS = ("cell",)
+
+
+def wall_geometry(data: dict) -> dict:
+    """The walls' geometry a calibration ran with, when not the block's ({} otherwise)."""
+    options = data.get("simulator", {}).get("options", {}) or {}
+    return {k: options[k] for k in WALL_GEOMETRY_FIELDS if k in options}
+
+
 def wall_control(data: dict) -> dict:
     """The walls' hourglass control a calibration ran with ({} for the block's default)."""
     options = data.get("simulator", {}).get("options", {}) or {}

@@ -27,6 +27,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hollowbody.calibrate.simulate import CELL_MM
 from hollowbody.cli.run import add_threads_argument, with_threads
 from hollowbody.cli.run_engine import add_external_engine_arguments, external_engine
 from hollowbody.cli.text import plain
@@ -67,7 +68,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="continue the calibration checkpointed in --out (default: start anew)")
     p.add_argument("--mesh", type=float, default=7.5,
                    help="solid element edge in mm, also the hollow walls' element size "
-                        "(round(30/mesh) per cell edge); must divide 180 and 90 (default 7.5)")
+                        "(round(cell/mesh) per cell edge); must divide 180 and 90 (default 7.5)")
+    p.add_argument("--cell", type=float, default=CELL_MM,
+                   help="the hollow walls' cell size in mm; must divide 180 and 90 "
+                        f"(default {CELL_MM:g}, the paper's)")
     p.add_argument("--end-time", type=float, default=None,
                    help="simulated time in ms (default: the block's, long enough to rebound)")
     p.add_argument("--cfc", type=float, default=180.0,
@@ -244,9 +248,14 @@ def build_settings(args: argparse.Namespace):
         raise UserInputError(f"--cfc must be >= 0 (got {args.cfc:g})")
     # the engine is looked for here unless the evaluations run on a cluster's nodes
     engine = external_engine(args, find=getattr(args, "cluster", None) is None)
+    if not args.cell > 0.0:
+        raise UserInputError(f"--cell must be positive (got {args.cell:g} mm)")
+    # the paper's cell is not recorded (calibrations made before --cell keep their caches)
+    geometry = {} if args.cell == CELL_MM else {"cell": float(args.cell)}
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time, fixed=fixed,
                               options={**wall_hourglass_options(args),
-                                       **solid_hourglass_options(args)}, engine=engine)
+                                       **solid_hourglass_options(args), **geometry},
+                              engine=engine)
     try:  # the block's own checks (mesh divides the block, ...)
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], space.rounded(space.lower))

@@ -88,6 +88,7 @@ def main(args: argparse.Namespace) -> int:
         run_study,
         solid_control_of_calibration,
         wall_control_of_calibration,
+        wall_geometry_of_calibration,
     )
     from hollowbody.report.study import wall_time_ratios, write_study_report
     from hollowbody.solver.outputs import prepare_runs_dir
@@ -118,8 +119,10 @@ def main(args: argparse.Namespace) -> int:
             print(f"note: the walls of {args.hollow_from} were fitted to a solid block with "
                   f"{_solid_text(calibrated)}; this study runs the solid block with "
                   f"{_solid_text(solid)}", file=sys.stderr)
+    # the calibrated walls' geometry (cell size) when not the paper's
+    geometry = wall_geometry_of_calibration(args.hollow_from) if args.hollow_from else {}
     sim = BlockSimulator.make(args.tissue, mesh=args.mesh, end_time=args.end_time,
-                              vtk=args.vtk, options={**options, **solid})
+                              vtk=args.vtk, options={**options, **solid, **geometry})
     try:
         sim.config("solid", speeds[0])
         sim.config("hollow", speeds[0], wall)

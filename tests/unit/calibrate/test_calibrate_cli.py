@@ -247,3 +247,50 @@ def test_study_runs_the_solid_block_the_walls_were_fitted_to(tmp_path, capsys, m
     got = {"hourglass_ihq": seen["solid"].hourglass_ihq, "hourglass_qh": seen["solid"].hourglass_qh}
     assert got == expected
     assert ("were fitted to a solid block with" in capsys.readouterr().err) is note
+
+
+def test_calibrate_cell_goes_into_the_runs_and_the_cache_key():
+    """--cell 15: the hollow runs get 15 mm cells with round(15 / mesh) = 2 shells per cell
+    edge, the description (cache key, calibration.json) records the cell; the paper's 30
+    mm cell is not recorded (calibrations made before the option keep their caches)."""
+    from hollowbody.cli.calibrate import build_settings
+
+    _, paper = build_settings(_parsed(["--cell", "30"]))
+    _, fine = build_settings(_parsed(["--cell", "15"]))
+    cfg = fine.config("hollow", 40.0, {"E": 100.0, "yield": 4.0})
+    assert (cfg.cell, cfg.elements_per_edge) == (15.0, 2)
+    assert fine.describe()["options"] == {"cell": 15.0}
+    assert fine.describe()["elements_per_edge"] == 2
+    assert paper.describe() == build_settings(_parsed([]))[1].describe()
+    assert paper.config("hollow", 40.0, {"E": 100.0, "yield": 4.0}).cell == 30.0
+
+
+@pytest.mark.parametrize("cell, words", [("7", "does not divide the block"),
+                                         ("0", "must be positive")])
+def test_calibrate_refuses_a_bad_cell(tmp_path, capsys, cell, words):
+    code = cli_main.main(["calibrate", "--tissue", "muscle", "--cell", cell,
+                          "--out", str(tmp_path / "c")])
+    assert code == 2
+    assert words in capsys.readouterr().err
+
+
+def test_study_builds_the_calibrated_walls_cells(tmp_path, monkeypatch):
+    """Walls calibrated with 15 mm cells are built with 15 mm cells (2 shells per edge at
+    the 7.5 mm mesh) in the study."""
+    import hollowbody.calibrate.study as cal_study
+    import hollowbody.report.study as report_study
+
+    seen = {}
+
+    def fake_run_study(sim, speeds, out, hollow_params=None, runner=None):
+        seen["hollow"] = sim.config("hollow", 40.0, hollow_params)
+        return []
+
+    monkeypatch.setattr(cal_study, "run_study", fake_run_study)
+    monkeypatch.setattr(report_study, "write_study_report",
+                        lambda rows, out: {"table_md": out / "study.md"})
+    cal = _calibration_file(tmp_path, {"cell": 15.0})
+    code = cli_main.main(["study", "--tissue", "muscle", "--out", str(tmp_path / "s"),
+                          "--hollow-from", str(cal), "--workers", "1"])
+    assert code == 0
+    assert (seen["hollow"].cell, seen["hollow"].elements_per_edge) == (15.0, 2)
