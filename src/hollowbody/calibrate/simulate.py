@@ -96,7 +96,8 @@ class BlockSimulator:
     """The block test of :mod:`hollowbody.scenarios.block`.
 
     tissue: 'muscle' or 'fat'; mesh: solid element edge (mm), also the hollow
-    walls' element size (``elements_per_edge = round(30 / mesh)``); end_time:
+    walls' element size (``elements_per_edge = round(cell / mesh)``, the cell 30 mm
+    unless ``options`` give one); end_time:
     simulated time (ms; None: the block's default); fixed: values of hollow
     parameters that are not calibrated ({name: value}, e.g. {'thickness': 1.2});
     options: further :class:`~hollowbody.scenarios.block.BlockConfig` fields

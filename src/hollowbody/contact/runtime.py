@@ -217,9 +217,10 @@ class ContactRuntime:
     damping then use the deformable side's mass); fixed_node: (n,) bool, nodes
     with every translation held by an SPC (None: none); rigid_share: (n,) kg, a
     rigid body's mass divided by its node count on its nodes (None: rigid nodes
-    are left out of the stiffened zone's stability bound). A pair in which every
-    participant is rigid or fixed (a rigid impactor on a fixed base) always gets
-    the stiffened zone, bounded by the rigid body's mass. x0: (n, 3) mm initial
+    are left out of the stiffened zone's stability bound). Every contact has the
+    stiffened zone; a pair in which every participant is rigid or fixed (a rigid
+    impactor on a fixed base) keeps it, bounded by the rigid body's mass, when
+    :meth:`set_stiffening` switches it off for the contact. x0: (n, 3) mm initial
     coordinates of the run (the tied contacts' ``node_x0``; None: the model's).
 
     After each :meth:`add_forces`: ``slave_force`` (3,) kN resultant contact
@@ -350,7 +351,7 @@ class ContactRuntime:
         # every contact has the stiffened zone (law.py), shells and self-contacts too:
         # crushed walls stiffen as their step falls, and a SOFT=1 spring set from the
         # initial step let them push nodes through their folds (calibrated hollow
-        # muscle block, 70 km/h: 71 nodes through without it, 32 with it)
+        # muscle block, 70 km/h: 71 pass-through events without it, 32 with it)
         self.set_penmax(PENMAX, exclusions=False)
         #: initial contacts between surfaces not joined by the mesh (they push apart)
         self.n_initial_penetrations = 0

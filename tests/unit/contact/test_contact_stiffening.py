@@ -129,17 +129,19 @@ def test_node_past_the_mid_surface_of_a_thick_shell_is_still_pushed_back():
     assert rt.pop_events() == []  # reported once
 
 
-@pytest.mark.parametrize("stiffen", [True, False])
+@pytest.mark.parametrize("stiffen", [True, False, None])
 def test_light_nodes_pressed_hard_onto_a_soft_thick_plate(stiffen):
     # A row of light nodes (0.1 g) pushed with 1 N each onto a 4 mm rigid shell whose
     # penalty spring is very soft (E = 0.1 MPa): k (reach + release depth) = 1e-4 kN
     # is 10x less than the push. Without the stiffened zone they pass through
     # (and are reported); with it they stop within the shell's contact thickness.
+    # None: the contact as built (shells only, the zone on by default, docs/contact.md)
     z0 = np.full(5, 2.05)
     model, rt, mass, rigid, ns = _thick_rigid_plate(z0, e_plate=1e-4)
-    # shells only: the runtime leaves the stiffened zone off (docs/contact.md);
-    # switched on here to test the law itself on a thick plate
-    rt.set_stiffening(STIFFEN_FRACTION if stiffen else 1.0)
+    if stiffen is None:
+        stiffen = True
+    else:
+        rt.set_stiffening(STIFFEN_FRACTION if stiffen else 1.0)
     f_ext = np.zeros((model.n_nodes, 3))
     f_ext[:ns, 2] = -1e-3
     zmin = []

@@ -3,7 +3,7 @@
 Prescribed paths of one 1 g node against rigid segments (frictionless, node
 thickness 0), so that the contact energy is the work the node did on the
 contact: a passive contact ends a closed path with an energy >= 0, never < 0.
-The stiffened zone is on (the contacts have solid faces): its tangent stiffness
+The stiffened zone is on (as in every contact): its tangent stiffness
 here is ``0.25 m / dt^2`` = 250 kN/mm, a thousand times the spring's.
 
 * Behind a face turned against it: a node pressed into the top of a rigid
@@ -114,8 +114,8 @@ def test_node_behind_a_face_turned_against_it_is_not_caught():
 
 def _step():
     """Rigid 1 mm shells A (z = 0, y in [-10, 0]) and B (z = 1, y in [0, 10]), 20 mm
-    wide in x, and a rigid hexahedron far away (its faces switch the stiffened zone
-    on for the contact)."""
+    wide in x, and a rigid hexahedron far away (a solid part in the contact; the
+    stiffened zone is on in every contact)."""
     g = np.array([[-10.0, -10.0, 0.0], [10.0, -10.0, 0.0], [10.0, 0.0, 0.0],
                   [-10.0, 0.0, 0.0], [-10.0, 0.0, 1.0], [10.0, 0.0, 1.0], [10.0, 10.0, 1.0],
                   [-10.0, 10.0, 1.0]])

@@ -125,9 +125,9 @@ def test_shell_frame_rotates_stress_to_global() -> None:
 
 
 def test_shell_layer_stress_in_global_axes() -> None:
-    """The layers' stresses written for a turned shell: a pure local sigma_xx of 2 GPa
-    (a 1-2 shear of 0.5, transverse shears 0.1 / 0.2) comes out as R^T S R with R the
-    shell's frame, for the first, middle and last point; plastic strains as given."""
+    """The layers' stresses written for a turned shell: local sigma_xx 2 / 1 / -2 GPa
+    at the first, middle and last point (a 1-2 shear of 0.5, transverse shears 0.1 /
+    0.2) come out as R^T S R with R the shell's frame; plastic strains as given."""
     from types import SimpleNamespace
 
     from hollowbody.solver.d3plot_output import _shell_layers
