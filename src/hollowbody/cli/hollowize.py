@@ -33,18 +33,20 @@ def register(sub: argparse._SubParsersAction) -> None:
                      help="a *SET_PART id (default: by material type)")
     sel.add_argument("--material-type", type=int, default=None,
                      help="every solid part with this LS-DYNA material type (default 181)")
-    p.add_argument("--cell", type=float, default=30.0, help="cell edge in mm (default 30)")
+    p.add_argument("--cell", type=float, default=None,
+                   help="cell edge in mm (default: the calibration's, else 30)")
     p.add_argument("--thickness", type=float, default=None,
                    help="wall thickness in mm (default: the calibration's, else 1.5)")
-    p.add_argument("--elements-per-edge", type=int, default=4,
-                   help="shell elements along a cell edge (default 4)")
+    p.add_argument("--elements-per-edge", type=int, default=None,
+                   help="shell elements along a cell edge (default: the calibration's, "
+                        "else 4)")
     mat = p.add_mutually_exclusive_group()
     mat.add_argument("--material", type=_pair, default=None, metavar="E,YIELD",
                      help="wall Young's modulus and yield stress in MPa (default: the paper's "
                      "fit, muscle 100,4 for KM >= 0.1 GPa, fat 50,2 otherwise)")
     mat.add_argument("--calibration", type=Path, default=None,
-                     help="calibration.json (best E and yield in MPa; its etan and thickness "
-                     "too when present; default: none)")
+                     help="calibration.json (best E and yield in MPa; its etan, thickness, "
+                     "cell and shells per cell edge too when present; default: none)")
     p.add_argument("--wall-hourglass", type=int, default=0, metavar="IHQ",
                    help="hourglass control of the walls: 0 none (the deck's default), 4 "
                         "stiffness form, as the block test's --wall-hourglass (default 0)")
@@ -100,10 +102,14 @@ def run(args: argparse.Namespace) -> int:
     inputs = input_files(deck)
     if out.resolve() in inputs:
         raise UserInputError(f"--out {out} is a file of the input deck; choose another name")
-    options = HollowOptions(cell=args.cell,
+    options = HollowOptions(cell=30.0 if args.cell is None else args.cell,
                             thickness=1.5 if args.thickness is None else args.thickness,
                             thickness_from_calibration=args.thickness is None,
-                            elements_per_edge=args.elements_per_edge, material=args.material,
+                            geometry_from_calibration=(args.cell is None
+                                                       and args.elements_per_edge is None),
+                            elements_per_edge=(4 if args.elements_per_edge is None
+                                               else args.elements_per_edge),
+                            material=args.material,
                             calibration=args.calibration, etan=args.etan,
                             wall_hourglass_ihq=args.wall_hourglass,
                             wall_hourglass_qm=args.wall_hourglass_qm,

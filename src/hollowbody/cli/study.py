@@ -1,8 +1,9 @@
 """``hollowbody study``: efficiency and stability of the solid vs the hollow block.
 
 Runs the solid and the hollow block test at each speed (hollow walls from a
-calibration's best candidate with --hollow-from, run with the hourglass
-control they were calibrated with unless --wall-hourglass says otherwise; else
+calibration's best candidate with --hollow-from, built with the calibration's
+cell and run with the hourglass control they were calibrated with unless
+--wall-hourglass says otherwise; else
 the paper's fit: muscle E 100 MPa / yield 4 MPa, fat 50 / 2 MPa, 1.5 mm walls;
 the solid block with the hourglass control of the calibration's solid reference
 unless --solid-hourglass says otherwise, else the block's IHQ 6) and writes into DIR:

@@ -94,7 +94,10 @@ class HollowOptions:
     tangent modulus MPa; grid_axes: ``global`` or ``principal`` (the part's
     principal axes of inertia); mass_mode: ``density`` or ``nodal``;
     thickness_from_calibration: a wall thickness in the calibration file
-    replaces ``thickness``; self_contact: add a single-surface contact on
+    replaces ``thickness``; geometry_from_calibration: the cell and the shells
+    per cell edge the calibration's block walls had replace ``cell`` and
+    ``elements_per_edge`` (:func:`read_calibration_geometry`); self_contact: add a
+    single-surface contact on
     each converted part;
     snap, merge: lattice-step fractions (see :mod:`hollowbody.hollow.fill`);
     coverage: measure the coverage of the removed solids (report).
@@ -107,6 +110,7 @@ class HollowOptions:
     calibration: str | Path | None = None
     etan: float = 0.0
     thickness_from_calibration: bool = True
+    geometry_from_calibration: bool = True
     grid_axes: str = "global"
     mass_mode: str = "density"
     self_contact: bool = True
@@ -192,6 +196,26 @@ def read_calibration(path: str | Path) -> dict[str, float]:
     return out
 
 
+def read_calibration_geometry(path: str | Path) -> dict[str, float | int]:
+    """The walls' geometry of a calibration driver's file: ``cell`` (mm; recorded when
+    not the paper's 30 mm) and ``elements_per_edge`` from its ``simulator``; {} for
+    other calibration files (those :func:`read_calibration` reads it has checked)."""
+    sim = json.loads(Path(path).read_text()).get("simulator")
+    if not isinstance(sim, dict):
+        return {}
+    out: dict[str, float | int] = {}
+    options = sim.get("options")
+    try:
+        if isinstance(options, dict) and "cell" in options:
+            out["cell"] = float(options["cell"])
+        if "elements_per_edge" in sim:
+            out["elements_per_edge"] = int(sim["elements_per_edge"])
+    except (TypeError, ValueError):
+        raise UserInputError(f"calibration file '{path}': the simulator's cell and "
+                             "elements_per_edge must be numbers") from None
+    return out
+
+
 def wall_material(model: Model, pid: int, options: HollowOptions) -> dict:
     """E, yield, ETAN (MPa), PR and where they come from, for part ``pid``'s walls."""
     etan = options.etan
@@ -271,6 +295,9 @@ def hollowize(deck: Deck, selection: Selection | None = None,
         t = read_calibration(options.calibration).get("thickness")
         if t is not None:
             options = dataclasses.replace(options, thickness=t)
+    if options.calibration is not None and options.geometry_from_calibration:
+        read_calibration(options.calibration)  # a readable calibration file first
+        options = dataclasses.replace(options, **read_calibration_geometry(options.calibration))
     options.validate()
     model = build_model(deck)
     pids = select_parts(deck, model, selection)

@@ -32,7 +32,8 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.calibrate.reference import read_curve_csv
-from hollowbody.calibrate.wall import WALL_UNITS, effective_wall
+from hollowbody.calibrate.simulate import CELL_MM
+from hollowbody.calibrate.wall import WALL_UNITS, effective_wall, wall_geometry
 from hollowbody.curves.force_displacement import ForceDisplacement, smoothed
 from hollowbody.curves.plot import TURN_LABEL, add_legend, clip_force_axis, draw_curve
 
@@ -140,12 +141,20 @@ def table1_row(data: dict) -> dict:
             "fitness": data.get("best_fitness"),
             "speeds_kmh": " ".join(f"{s:g}" for s in data["speeds_kmh"]),
             "calibrated": " ".join(data["parameters"]),
+            "cell_mm": wall_geometry(data).get("cell", CELL_MM),
+            "elements_per_edge": (data.get("simulator") or {}).get("elements_per_edge"),
             "paper_hollow_E_MPa": t.hollow_E * 1000.0,
             "paper_hollow_yield_MPa": t.hollow_yield * 1000.0}
 
 
 def _num(v: float | None, fmt: str = "{:.4g}") -> str:
     return "n/a" if v is None else fmt.format(v)
+
+
+def _cells(row: dict) -> str:
+    """'30 mm cells, 4 shells per edge' of a Table 1 row."""
+    n = row.get("elements_per_edge")
+    return f"{row['cell_mm']:g} mm cells" + ("" if n is None else f", {n} shells per edge")
 
 
 def write_table1(rows: list[dict], md_path: str | Path, csv_path: str | Path) -> None:
@@ -163,10 +172,10 @@ def write_table1(rows: list[dict], md_path: str | Path, csv_path: str | Path) ->
                      f"{_num(r['hollow_etan_MPa'])} | {_num(r['hollow_thickness_mm'])} | "
                      f"{_num(r['fitness'], '{:.3g}')} | {r['paper_hollow_E_MPa']:g} / "
                      f"{r['paper_hollow_yield_MPa']:g} |")
-    notes = ", ".join(f"{r['tissue']}: calibrated {r['calibrated']} at {r['speeds_kmh']} km/h"
-                      for r in rows)
-    lines += ["", f"Hollow walls: 30 mm cells, elastic-plastic shells. {notes}. Parameters "
-              "not calibrated keep the block's values."]
+    notes = ", ".join(f"{r['tissue']}: {_cells(r)}, calibrated {r['calibrated']} at "
+                      f"{r['speeds_kmh']} km/h" for r in rows)
+    lines += ["", f"Hollow walls: elastic-plastic shells; {notes}. Parameters not "
+              "calibrated keep the block's values."]
     Path(md_path).write_text("\n".join(lines) + "\n")
     with open(csv_path, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]) if rows else ["tissue"])
@@ -209,6 +218,7 @@ def copy_best_deck(data: dict, out_dir: Path) -> Path | None:
         first = first or target
     (dest / "parameters.json").write_text(json.dumps(
         {"tissue": data["tissue"], "wall": effective_wall(data),
+         "cell_mm": wall_geometry(data).get("cell", CELL_MM),
          "units": WALL_UNITS,
          "fitness": data.get("best_fitness"), "speeds_kmh": data["speeds_kmh"]}, indent=2))
     return first

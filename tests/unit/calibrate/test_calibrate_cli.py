@@ -294,3 +294,20 @@ def test_study_builds_the_calibrated_walls_cells(tmp_path, monkeypatch):
                           "--hollow-from", str(cal), "--workers", "1"])
     assert code == 0
     assert (seen["hollow"].cell, seen["hollow"].elements_per_edge) == (15.0, 2)
+
+
+def test_table1_names_the_walls_cells(tmp_path):
+    """Table 1 says which cells the walls were calibrated with: the recorded cell, else
+    the paper's 30 mm; the shells per cell edge the simulator had."""
+    from hollowbody.report.calibration import table1_row, write_table1
+
+    base = {"tissue": "muscle", "speeds_kmh": [40.0], "parameters": {"E": {}, "yield": {}},
+            "best_parameters": {"E": 60.0, "yield": 40.0}, "best_fitness": 0.3}
+    fine = {**base, "simulator": {"fixed": {}, "options": {"cell": 15.0},
+                                  "elements_per_edge": 2}}
+    paper = {**base, "simulator": {"fixed": {}, "options": {}, "elements_per_edge": 4}}
+    for data, words in ((fine, "15 mm cells, 2 shells per edge"),
+                        (paper, "30 mm cells, 4 shells per edge")):
+        write_table1([table1_row(data)], tmp_path / "t.md", tmp_path / "t.csv")
+        assert words in (tmp_path / "t.md").read_text()
+    assert table1_row(fine)["cell_mm"] == 15.0

@@ -144,3 +144,25 @@ def test_cli_bad_requests_exit_2_with_one_line(case, multipart, tmp_path, capsys
     assert words in line
     assert _digest(multipart.parent) == before
     assert not (tmp_path / "x.k").exists()
+
+
+def test_cli_builds_the_calibrated_walls_geometry(tmp_path):
+    """Walls calibrated with 15 mm cells and 2 shells per cell edge are built so; --cell or
+    --elements-per-edge given: the options, with the defaults for the one not given."""
+    deck = tmp_path / "fat.k"
+    write_deck(box_deck((90.0, 60.0, 60.0), 10.0, tissue_name="fat"), deck)
+    cal = tmp_path / "calibration.json"
+    cal.write_text(json.dumps({"best_parameters": {"E": 90.0, "yield": 3.5},
+                               "simulator": {"fixed": {}, "options": {"cell": 15.0},
+                                             "elements_per_edge": 2}}))
+
+    def geometry(*extra):
+        rep = tmp_path / "rep.md"
+        assert cli_main.main(["hollowize", str(deck), "--out", str(tmp_path / "o.k"),
+                              "--calibration", str(cal), "--report", str(rep), *extra]) == 0
+        opts = json.loads(rep.with_suffix(".json").read_text())["options"]
+        return opts["cell"], opts["elements_per_edge"]
+
+    assert geometry() == (15.0, 2)
+    assert geometry("--cell", "20") == (20.0, 4)
+    assert geometry("--elements-per-edge", "3") == (30.0, 3)
