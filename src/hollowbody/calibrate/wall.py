@@ -33,16 +33,20 @@ WALL_CONTROL_FIELDS = ("wall_hourglass_ihq", "wall_hourglass_qh")
 WALL_GEOMETRY_FIELDS = ("cell",)
 
 
+def _recorded(data: dict, names: tuple[str, ...]) -> dict:
+    """The fields ``names`` a calibration recorded in its simulator options."""
+    options = (data.get("simulator") or {}).get("options") or {}
+    return {k: options[k] for k in names if k in options}
+
+
 def wall_geometry(data: dict) -> dict:
     """The walls' geometry a calibration ran with, when not the block's ({} otherwise)."""
-    options = data.get("simulator", {}).get("options", {}) or {}
-    return {k: options[k] for k in WALL_GEOMETRY_FIELDS if k in options}
+    return _recorded(data, WALL_GEOMETRY_FIELDS)
 
 
 def wall_control(data: dict) -> dict:
     """The walls' hourglass control a calibration ran with ({} for the block's default)."""
-    options = data.get("simulator", {}).get("options", {}) or {}
-    return {k: options[k] for k in WALL_CONTROL_FIELDS if k in options}
+    return _recorded(data, WALL_CONTROL_FIELDS)
 
 
 #: BlockConfig fields of the solid reference's hourglass control

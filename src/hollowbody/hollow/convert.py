@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.build import build_model
+from hollowbody.calibrate.wall import wall_geometry
 from hollowbody.errors import UserInputError
 from hollowbody.hollow import deck_edit as de
 from hollowbody.hollow.boundary import boundary_faces, solid_mass_properties, solid_tets
@@ -200,14 +201,13 @@ def read_calibration_geometry(path: str | Path) -> dict[str, float | int]:
     """The walls' geometry of a calibration driver's file: ``cell`` (mm; recorded when
     not the paper's 30 mm) and ``elements_per_edge`` from its ``simulator``; {} for
     other calibration files (those :func:`read_calibration` reads it has checked)."""
-    sim = json.loads(Path(path).read_text()).get("simulator")
-    if not isinstance(sim, dict):
+    data = json.loads(Path(path).read_text())
+    sim = data.get("simulator")
+    if not isinstance(sim, dict) or not isinstance(sim.get("options") or {}, dict):
         return {}
     out: dict[str, float | int] = {}
-    options = sim.get("options")
     try:
-        if isinstance(options, dict) and "cell" in options:
-            out["cell"] = float(options["cell"])
+        out.update({k: float(v) for k, v in wall_geometry(data).items()})
         if "elements_per_edge" in sim:
             out["elements_per_edge"] = int(sim["elements_per_edge"])
     except (TypeError, ValueError):
@@ -291,13 +291,13 @@ def hollowize(deck: Deck, selection: Selection | None = None,
     """
     selection = selection or Selection()
     options = options or HollowOptions()
-    if options.calibration is not None and options.thickness_from_calibration:
-        t = read_calibration(options.calibration).get("thickness")
-        if t is not None:
+    if options.calibration is not None:
+        t = read_calibration(options.calibration).get("thickness")  # a readable file first
+        if t is not None and options.thickness_from_calibration:
             options = dataclasses.replace(options, thickness=t)
-    if options.calibration is not None and options.geometry_from_calibration:
-        read_calibration(options.calibration)  # a readable calibration file first
-        options = dataclasses.replace(options, **read_calibration_geometry(options.calibration))
+        if options.geometry_from_calibration:
+            options = dataclasses.replace(options,
+                                          **read_calibration_geometry(options.calibration))
     options.validate()
     model = build_model(deck)
     pids = select_parts(deck, model, selection)
