@@ -39,7 +39,6 @@ from pathlib import Path
 import numpy as np
 
 from hollowbody.build import build_model
-from hollowbody.calibrate.wall import wall_geometry
 from hollowbody.errors import UserInputError
 from hollowbody.hollow import deck_edit as de
 from hollowbody.hollow.boundary import boundary_faces, solid_mass_properties, solid_tets
@@ -201,13 +200,14 @@ def read_calibration_geometry(path: str | Path) -> dict[str, float | int]:
     """The walls' geometry of a calibration driver's file: ``cell`` (mm; recorded when
     not the paper's 30 mm) and ``elements_per_edge`` from its ``simulator``; {} for
     other calibration files (those :func:`read_calibration` reads it has checked)."""
-    data = json.loads(Path(path).read_text())
-    sim = data.get("simulator")
-    if not isinstance(sim, dict) or not isinstance(sim.get("options") or {}, dict):
+    sim = json.loads(Path(path).read_text()).get("simulator")
+    if not isinstance(sim, dict):
         return {}
     out: dict[str, float | int] = {}
+    options = sim.get("options")  # (the calibration layer's wall_geometry, read here)
     try:
-        out.update({k: float(v) for k, v in wall_geometry(data).items()})
+        if isinstance(options, dict) and "cell" in options:
+            out["cell"] = float(options["cell"])
         if "elements_per_edge" in sim:
             out["elements_per_edge"] = int(sim["elements_per_edge"])
     except (TypeError, ValueError):
