@@ -94,13 +94,14 @@ from hollowbody.model.model import ContactDef, Model
 #: (LS-DYNA's PENMAX default for automatic contacts is 0.4) or of sqrt(A) of a shell.
 PENMAX = 0.4
 #: A threaded kernel costs a wake-up of the waiting threads per call: ~2 us while
-#: they spin, 60-140 us with the passive wait policy that runs set (solver.threads) on
-#: the shared two-core machine of BENCHMARKS.md. So a pass runs its per-cycle kernels
-#: (frames, detection, forces, kinematic limit) threaded only from this many active
-#: rows (nodes with near pairs or a contact). The hollow block's passes (at most 3,182
-#: active rows of 5,209 nodes) were slower threaded than serial there (2 threads, idle
-#: machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on one thread); the contact
-#: benchmark's plate (5,041 active rows) gains 1.14x (benchmarks/bench_contact.py).
+#: they spin, 60-140 us when they sleep (passive wait) on the shared two-core machine
+#: of BENCHMARKS.md. So a pass runs its per-cycle kernels (frames, detection, forces,
+#: kinematic limit) threaded only from ``parallel_min_rows`` active rows (nodes with
+#: near pairs or a contact). This default is for sleeping threads: the hollow block's
+#: passes (at most 3,182 active rows of 5,209 nodes) were slower threaded than serial
+#: there (2 threads, idle machine, 100 km/h: contact 4.7-6.5 s against 4.5-5.1 s on
+#: one thread). A run whose threads spin briefly before they sleep lowers it
+#: (hollowbody.solver.threads.per_cycle_min_rows: 256; contact 3.2 s against 4.3 s).
 PARALLEL_MIN_ROWS = 4096
 #: The near filter and the bucket sort run threaded (blocks of nodes, each written
 #: into its own part of the lists) for passes of at least this many nodes plus far

@@ -31,6 +31,7 @@ from hollowbody.io.results.d3plot import available as d3plot_available
 from hollowbody.model.summary import unsupported_entries, unsupported_lines
 from hollowbody.solver import restart as rs
 from hollowbody.solver import threads as th
+from hollowbody.solver.contention import ContentionGuard
 from hollowbody.solver.dump_policy import DumpPolicy
 from hollowbody.solver.energies import kinetic_energy
 from hollowbody.solver.monitors import Monitors
@@ -154,6 +155,10 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
         n_threads, threads_why = th.resolve(setting, th.model_work(plan))
     except ValueError as exc:
         raise UserInputError(str(exc)) from None
+    policy = th.wait_policy()
+    for c in plan.contacts:  # threaded per-cycle contact kernels: as cheap as a wake-up
+        if hasattr(c, "parallel_min_rows"):
+            c.parallel_min_rows = th.per_cycle_min_rows(policy)
     try:
         dumps = DumpPolicy(cycles=options.dump_cycles if options.dump_cycles is not None
                            else model.output.d3dump_cycles, minutes=options.dump_minutes,
@@ -214,6 +219,8 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                         if watch.compiled:
                             progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
                         progress.begin(state.t)
+                        if policy != "passive":  # spinning threads: watched
+                            extra["_guard"] = ContentionGuard(n_threads)
                         _loop(model, plan, state, outputs, progress, stop, end_time, dumps,
                               extra)
                 except Termination as term:
@@ -304,11 +311,30 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
                               f"at t={state.t:.6g} ms", element=elem, part=pid)
         outputs.record(state)
         progress.update(state.t, state.cycle, dt)
+        if "_guard" in extra:
+            _watch_threads(extra, state, progress)
         if running and dumps.active and dumps.due(state.cycle):
             _dump(model, state, outputs, extra, dumps)
         if stop.requested is not None and running:
             raise Termination(INTERRUPT, f"interrupted by the user ({stop.requested}) at "
                               f"t={state.t:.6g} ms")
+
+
+def _watch_threads(extra: dict, state: State, progress: Progress) -> None:
+    """One thread from now on when the run's threads keep waiting for cores
+    (:class:`~hollowbody.solver.contention.ContentionGuard`): said in the log and in
+    ``summary.json`` (``threads_dropped``)."""
+    guard = extra["_guard"]
+    share = guard.check()
+    if share is None:
+        return
+    extra["threads_dropped"] = {"time_ms": round(state.t, 6), "cycle": state.cycle,
+                                "from": guard.threads, "to": 1,
+                                "waiting_share": round(share, 3)}
+    del extra["_guard"]
+    progress.note(f"threads: {guard.threads} -> 1 at t={state.t:.6g} ms (cycle {state.cycle}): "
+                  f"the run's threads waited {100.0 * share:.0f} % of their time for a core "
+                  "held by other processes")
 
 
 def _wall_total(extra: dict) -> float:

@@ -121,16 +121,16 @@ def test_check_threads_option_is_capped_like_the_run(capsys):
     assert t["count"] == limit and "available (NUMBA_NUM_THREADS)" in t["reason"]
 
 
-def test_check_asks_for_the_passive_wait_policy_before_its_kernels(monkeypatch, capsys):
+def test_check_sets_the_wait_policy_before_its_kernels(monkeypatch, capsys):
     import hollowbody.solver.preflight as preflight
 
     calls = []
-    real_passive, real_first = th.passive_wait, preflight.first_time_step
-    monkeypatch.setattr(th, "passive_wait", lambda: calls.append("passive") or real_passive())
+    real_policy, real_first = th.wait_policy, preflight.first_time_step
+    monkeypatch.setattr(th, "wait_policy", lambda: calls.append("policy") or real_policy())
     monkeypatch.setattr(preflight, "first_time_step",
                         lambda model: calls.append("first step") or real_first(model))
     assert main(["check", str(DECKS / "hand_check.k"), "--json"]) == 0
-    assert calls[0] == "passive" and "first step" in calls
+    assert calls[0] == "policy" and "first step" in calls
 
 
 @pytest.mark.parametrize("bad", ["0", "two"])

@@ -48,20 +48,54 @@ def test_auto_spinning_threads_only_on_idle_cores():
 def test_auto_on_a_large_model_follows_the_wait_policy(monkeypatch):
     monkeypatch.setattr(th, "available_threads", lambda: 2)
     monkeypatch.setattr(th, "idle_cores", lambda: 1)
-    monkeypatch.setattr(th, "passive_wait", lambda: True)
+    monkeypatch.setattr(th, "wait_policy", lambda: "passive")
     assert th.resolve("auto", 10**6) == (2, "auto: 2 available, passive wait")
-    monkeypatch.setattr(th, "passive_wait", lambda: False)
+    monkeypatch.setattr(th, "wait_policy", lambda: "short")
+    assert th.resolve("auto", 10**6) == (2, "auto: 2 available, short wait")
+    monkeypatch.setattr(th, "wait_policy", lambda: "spin")
     n, why = th.resolve("auto", 10**6)
     assert n == 1 and "spinning" in why
 
 
-def test_passive_wait_reads_the_policy_omp_started_with(monkeypatch):
+def test_wait_policy_sets_a_short_spin_where_contention_is_watched(monkeypatch):
     monkeypatch.setattr(th, "_threads_started", lambda: False)
     monkeypatch.delenv("OMP_WAIT_POLICY", raising=False)
-    assert th.passive_wait() is True
-    assert os.environ["OMP_WAIT_POLICY"] == "passive"  # set before the threads start
+    monkeypatch.delenv("GOMP_SPINCOUNT", raising=False)
+    omp = numba.config.THREADING_LAYER not in ("tbb", "workqueue")
+    monkeypatch.setattr(th.contention, "available", lambda: True)
+    assert th.wait_policy() == ("short" if omp else "passive")
+    assert os.environ["GOMP_SPINCOUNT"] == str(th.SHORT_SPIN)  # set before the threads start
+    assert "OMP_WAIT_POLICY" not in os.environ
+    monkeypatch.delenv("GOMP_SPINCOUNT")
+    monkeypatch.setattr(th.contention, "available", lambda: False)
+    assert th.wait_policy() == "passive"
+    assert os.environ["OMP_WAIT_POLICY"] == "passive" and "GOMP_SPINCOUNT" not in os.environ
+
+
+def test_wait_policy_keeps_what_the_environment_sets(monkeypatch):
+    monkeypatch.setattr(th, "_threads_started", lambda: False)
+    monkeypatch.delenv("GOMP_SPINCOUNT", raising=False)
     monkeypatch.setenv("OMP_WAIT_POLICY", "active")
-    assert th.passive_wait() is (numba.config.THREADING_LAYER in ("tbb", "workqueue"))
+    omp = numba.config.THREADING_LAYER not in ("tbb", "workqueue")
+    assert th.wait_policy() == ("spin" if omp else "passive")
+    assert "GOMP_SPINCOUNT" not in os.environ
+
+
+def test_omp_policy_reads_the_spin_count_before_the_wait_policy():
+    assert th.omp_policy({}) == "spin"  # libgomp's default spins long
+    assert th.omp_policy({"OMP_WAIT_POLICY": "PASSIVE"}) == "passive"
+    assert th.omp_policy({"OMP_WAIT_POLICY": "active"}) == "spin"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "20000", "OMP_WAIT_POLICY": "passive"}) == "short"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "0"}) == "passive"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "20k"}) == "short"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "3M"}) == "spin"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "infinite"}) == "spin"
+    assert th.omp_policy({"GOMP_SPINCOUNT": "lots", "OMP_WAIT_POLICY": "passive"}) == "passive"
+
+
+def test_contact_kernels_thread_from_fewer_rows_when_threads_spin():
+    assert th.per_cycle_min_rows("short") == th.per_cycle_min_rows("spin") == \
+        th.PER_CYCLE_MIN_ROWS < th.per_cycle_min_rows("passive")
 
 
 def test_idle_cores_counts_the_load_of_the_rest_of_the_machine():
