@@ -46,23 +46,25 @@ from hollowbody.contact.detect import CHUNK
 
 #: Fraction of the contact band a node may cross per step (module docstring).
 KIN_FRACTION = 0.5
+#: Relative slack of the skip test ``travel > best * wmax``: a pair is skipped only when
+#: its time at the fastest closing speed is above the best by more than round-off.
+_BOUND_SLACK = 1.0 + 1.0e-12
 
 
 @njit(cache=True)
 def _pair_range(i0, i1, act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm,
-                rad2, ptr, cand, alpha):
-    """Smallest dt_kin (ms) over the near pairs of rows act[i0:i1], and its row (-1: none)."""
-    best = math.inf
+                rad2, ptr, cand, alpha, limit, wmax):
+    """Smallest dt_kin (ms) below ``limit`` over the near pairs of rows act[i0:i1], and
+    its row; (inf, -1) when none is below. ``wmax`` (mm/ms): a bound on every pair's
+    closing speed; a pair whose travel needs at least the best time so far at that
+    speed is not looked at further (its segment's velocity is not gathered)."""
+    best = limit
     row = -1
     for ii in range(i0, i1):
         i = act[ii]
         nd = nodes[i]
         for j in range(ptr[i], ptr[i + 1]):
             s = cand[j]
-            a = seg[s, 0]
-            b = seg[s, 1]
-            c = seg[s, 2]
-            d = seg[s, 3]
             px = x[nd, 0] - cen[s, 0]
             py = x[nd, 1] - cen[s, 1]
             pz = x[nd, 2] - cen[s, 2]
@@ -72,6 +74,23 @@ def _pair_range(i0, i1, act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two,
             dist = px * nx + py * ny + pz * nz
             if px * px + py * py + pz * pz - dist * dist > rad2[s]:
                 continue  # beside the segment, not over it
+            reach = 0.5 * (n_thick[i] + s_thick[s])
+            two = s_two[s] != 0
+            if two:
+                far = abs(dist)
+                band = reach
+            else:
+                far = dist + s_depth[s]
+                band = reach + s_depth[s]
+            if band <= 0.0 or far < 0.0:
+                continue
+            travel = max(alpha * band, far - (1.0 - alpha) * band)
+            if travel > best * wmax * _BOUND_SLACK:
+                continue  # slower than the best so far even at the fastest closing speed
+            a = seg[s, 0]
+            b = seg[s, 1]
+            c = seg[s, 2]
+            d = seg[s, 3]
             if d == c:
                 vx = (v[a, 0] + v[b, 0] + v[c, 0]) / 3.0
                 vy = (v[a, 1] + v[b, 1] + v[c, 1]) / 3.0
@@ -81,28 +100,24 @@ def _pair_range(i0, i1, act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two,
                 vy = 0.25 * (v[a, 1] + v[b, 1] + v[c, 1] + v[d, 1])
                 vz = 0.25 * (v[a, 2] + v[b, 2] + v[c, 2] + v[d, 2])
             rate = (v[nd, 0] - vx) * nx + (v[nd, 1] - vy) * ny + (v[nd, 2] - vz) * nz
-            reach = 0.5 * (n_thick[i] + s_thick[s])
-            if s_two[s] != 0:
+            if two:
                 w = -rate if dist >= 0.0 else rate
-                far = abs(dist)
-                band = reach
             else:
                 w = -rate
-                far = dist + s_depth[s]
-                band = reach + s_depth[s]
-            if w <= 0.0 or band <= 0.0 or far < 0.0:
+            if w <= 0.0:
                 continue
-            travel = max(alpha * band, far - (1.0 - alpha) * band)
             dtk = travel / w
             if dtk < best:
                 best = dtk
                 row = i
+    if row < 0:
+        return math.inf, -1
     return best, row
 
 
 @njit(cache=True, parallel=True)
 def approach_step(act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, ptr,
-                  cand, alpha, out_dt, out_row):
+                  cand, alpha, out_dt, out_row, limit=math.inf, wmax=math.inf):
     """dt_kin of one pass (module docstring), threaded over chunks of rows.
 
     act (m,) int32 rows to treat; x, v (L, 3) float64 mm, mm/ms (local rows, v at
@@ -111,14 +126,17 @@ def approach_step(act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, 
     (S,) mm^2: :func:`~hollowbody.contact.frames.segment_frames` (current for the
     segments of the near lists); ptr (ns + 1,) int64, cand int32: near lists;
     alpha: KIN_FRACTION. out_dt (>= chunks,) float64, out_row (>= chunks,) int64:
-    work arrays. Returns (dt_kin ms, row of ``nodes``); (inf, -1) when no pair closes.
+    work arrays. limit (ms): only steps below it are looked for (the step the solver
+    would take); wmax (mm/ms): a bound on every closing speed (twice the largest nodal
+    speed; inf: no pair is skipped). Returns (dt_kin ms, row of ``nodes``); (inf, -1)
+    when no pair closes fast enough to need a step below ``limit``.
     """
     m = act.shape[0]
     nch = (m + CHUNK - 1) // CHUNK
     for ch in prange(nch):
         out_dt[ch], out_row[ch] = _pair_range(ch * CHUNK, min(m, (ch + 1) * CHUNK), act, x, v,
                                               nodes, n_thick, seg, s_thick, s_depth, s_two, cen,
-                                              nrm, rad2, ptr, cand, alpha)
+                                              nrm, rad2, ptr, cand, alpha, limit, wmax)
     best = math.inf
     row = -1
     for ch in range(nch):
@@ -130,10 +148,11 @@ def approach_step(act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, 
 
 @njit(cache=True)
 def approach_step_serial(act, x, v, nodes, n_thick, seg, s_thick, s_depth, s_two, cen, nrm,
-                         rad2, ptr, cand, alpha, out_dt, out_row):
+                         rad2, ptr, cand, alpha, out_dt, out_row, limit=math.inf,
+                         wmax=math.inf):
     """Serial :func:`approach_step` (small passes: no thread start-up)."""
     return _pair_range(0, act.shape[0], act, x, v, nodes, n_thick, seg, s_thick, s_depth,
-                       s_two, cen, nrm, rad2, ptr, cand, alpha)
+                       s_two, cen, nrm, rad2, ptr, cand, alpha, limit, wmax)
 
 
 @njit(cache=True)
@@ -168,9 +187,11 @@ def work_arrays(n_rows: int) -> tuple[np.ndarray, np.ndarray]:
 
 def passes_step(passes: Sequence, xl: np.ndarray, vl: np.ndarray, dt_next: float,
                 threaded: Callable[[object], bool]) -> float:
-    """dt_kin (ms) over the passes of a contact; inf when no pair closes, and at once
-    when the bound ``KIN_FRACTION B_min / (2 v_max)`` is at least ``dt_next`` (no pair
-    can limit it).
+    """dt_kin (ms) over the passes of a contact when it is below ``dt_next``; inf when
+    no pair needs a step below it, at once when the bound ``KIN_FRACTION B_min /
+    (2 v_max)`` is at least ``dt_next``. Pairs that cannot beat ``dt_next`` or the best
+    so far even at the closing speed ``2 v_max`` are skipped before their segment's
+    velocity is gathered.
 
     passes: the contact's passes with segments (``_Pass``: act, nodes, n_thick, seg,
     s_thick, s_depth, s_two, cen, nrm, rad2, nptr, ncand, kin_band, work arrays),
@@ -187,9 +208,10 @@ def passes_step(passes: Sequence, xl: np.ndarray, vl: np.ndarray, dt_next: float
     if not math.isfinite(band) or KIN_FRACTION * band >= vmax * dt_next:
         return math.inf
     best = math.inf
-    for p in passes:
+    for p in passes:  # only steps below dt_next and the passes' best so far are sought
         d, _ = (approach_step if threaded(p) else approach_step_serial)(
             p.act, xl, vl, p.nodes, p.n_thick, p.seg, p.s_thick, p.s_depth, p.s_two, p.cen,
-            p.nrm, p.rad2, p.nptr, p.ncand, KIN_FRACTION, p._kin_dt, p._kin_row)
+            p.nrm, p.rad2, p.nptr, p.ncand, KIN_FRACTION, p._kin_dt, p._kin_row,
+            min(best, dt_next), vmax)
         best = min(best, float(d))
     return best

@@ -93,3 +93,53 @@ def test_narrowest_band_bounds_every_pair():
     # the bound holds for the single pairs above: dt_kin >= alpha B / (2 v_max)
     for z, vz in ((5.0, -10.0), (0.6, -10.0), (-0.6, 10.0)):
         assert limit(z, vz)[0] >= KIN_FRACTION * 1.0 / (2.0 * 10.0)
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+def test_skipping_pairs_keeps_the_smallest_step_below_the_limit(parallel):
+    """Many nodes over a grid of segments, random positions and velocities: with a limit
+    and the closing-speed bound 2 v_max the kernel skips pairs but returns the same
+    step (bit for bit) and row as the plain search whenever that step is below the
+    limit, and (inf, -1) otherwise."""
+    rng = np.random.default_rng(7)
+    n_side = 6  # 6 x 6 segments of 2 mm (two-sided and one-sided mixed)
+    g = np.arange(n_side + 1) * 2.0
+    gx, gy = np.meshgrid(g, g, indexing="ij")
+    xs = np.column_stack([gx.ravel(), gy.ravel(), np.zeros(gx.size)])
+    idx = np.arange(gx.size).reshape(n_side + 1, n_side + 1)
+    seg = np.array([[idx[i, j], idx[i + 1, j], idx[i + 1, j + 1], idx[i, j + 1]]
+                    for i in range(n_side) for j in range(n_side)], np.int32)
+    ns = 300
+    nodes_x = np.column_stack([rng.uniform(0, 2 * n_side, ns), rng.uniform(0, 2 * n_side, ns),
+                               rng.uniform(-4.0, 4.0, ns)])
+    x = np.vstack([xs, nodes_x])
+    x[: xs.shape[0], 2] += rng.normal(0.0, 0.05, xs.shape[0])  # slightly warped
+    nodes = np.arange(xs.shape[0], x.shape[0], dtype=np.int32)
+    nseg = seg.shape[0]
+    cen, nrm, rad2, warp = np.zeros((nseg, 3)), np.zeros((nseg, 3)), np.zeros(nseg), np.zeros(nseg)
+    segment_frames(x, seg, cen, nrm, rad2, warp, np.zeros((nseg, SLAB_COLS)), False)
+    ptr = np.arange(0, (ns + 1) * nseg, nseg, dtype=np.int64)  # every node sees every segment
+    cand = np.tile(np.arange(nseg, dtype=np.int32), ns)
+    thick = rng.uniform(0.0, 2.0, ns)
+    s_thick = rng.uniform(0.5, 2.0, nseg)
+    s_depth = rng.uniform(0.0, 1.0, nseg)
+    s_two = rng.integers(0, 2, nseg).astype(np.int8)
+    act = np.arange(ns, dtype=np.int32)
+    kern = approach_step if parallel else approach_step_serial
+    wd, wr = work_arrays(ns)
+    checked = 0
+    for trial in range(20):
+        v = rng.normal(0.0, 10.0, x.shape)
+        wmax = 2.0 * math.sqrt(max_speed2(v))
+        args = (act, x, v, nodes, thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, ptr,
+                cand, KIN_FRACTION, wd, wr)
+        plain = kern(*args)
+        assert math.isfinite(plain[0])
+        for lim in (math.inf, 1.5 * plain[0], plain[0], 0.5 * plain[0]):
+            got = kern(*args, lim, wmax)
+            if plain[0] < lim:
+                assert got == plain
+                checked += 1
+            else:
+                assert got == (math.inf, -1)
+    assert checked == 40
