@@ -166,6 +166,48 @@ def near_filter_parallel(x, nodes, seg, grow, ptr, cand, oseg, sact, lo, hi, npt
     return _marked(mark, stamp, nsact)
 
 
+@njit(cache=True, inline="always")
+def _keeps(i, s, px, py, pz, tn, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg, margin):
+    """Pair (row i at p, segment s) can come into contact before the next sort
+    (:func:`distance_cut`)."""
+    if s == oseg[i]:
+        return True
+    reach = 0.5 * (tn + s_thick[s])
+    reach = max(reach, release_depth(s_depth[s], reach, s_two[s] != 0))
+    rx = px - cen[s, 0]
+    ry = py - cen[s, 1]
+    rz = pz - cen[s, 2]
+    dn = abs(rx * nrm[s, 0] + ry * nrm[s, 1] + rz * nrm[s, 2])
+    lat = math.sqrt(max(rx * rx + ry * ry + rz * rz - dn * dn, 0.0))
+    rad = math.sqrt(rad2[s])
+    el = max(lat - _WIDEN * rad, 0.0)
+    en = max(dn - _WIDEN * warp[s], 0.0)
+    lim = (1.0 + 1.0e-6) * reach + _WIDEN * margin + 1.0e-4 * rad + 1.0e-9
+    return el * el + en * en <= lim * lim
+
+
+@njit(cache=True)
+def _cut_rows(r0, r1, x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg,
+              margin, ptr, cand, nptr):
+    """Rows r0:r1 of :func:`distance_cut`: their kept pairs compacted from ptr[r0] on
+    (in place), nptr[i] the new start of row i; returns the end of the kept pairs."""
+    w = ptr[r0]
+    for i in range(r0, r1):
+        nd = nodes[i]
+        px = x[nd, 0]
+        py = x[nd, 1]
+        pz = x[nd, 2]
+        tn = n_thick[i]
+        nptr[i] = w
+        for q in range(ptr[i], ptr[i + 1]):
+            s = cand[q]
+            if _keeps(i, s, px, py, pz, tn, s_thick, s_depth, s_two, cen, nrm, rad2, warp,
+                      oseg, margin):
+                cand[w] = s
+                w += 1
+    return w
+
+
 @njit(cache=True)
 def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg, margin,
                  ptr, cand):
@@ -191,37 +233,51 @@ def distance_cut(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, war
     next sort. A pair farther than the contact distance plus that is left out.
     """
     ns = nodes.shape[0]
+    nptr = np.empty(ns + 1, np.int64)
+    w = _cut_rows(0, ns, x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg,
+                  margin, ptr, cand, nptr)
+    nptr[ns] = w
+    ptr[:] = nptr
+    return w
+
+
+@njit(cache=True, parallel=True)
+def distance_cut_parallel(x, nodes, n_thick, s_thick, s_depth, s_two, cen, nrm, rad2, warp, oseg,
+                          margin, ptr, cand, nblocks):
+    """:func:`distance_cut` on numba's threads: ``nblocks`` blocks of rows with about
+    equal numbers of pairs, each compacted within its own range of cand, then moved
+    together (the same lists as the serial cut)."""
+    ns = nodes.shape[0]
+    total = ptr[ns]
+    rows = np.empty(nblocks + 1, np.int64)
+    rows[0] = 0
+    r = 0
+    for b in range(1, nblocks):
+        goal = (b * total) // nblocks
+        while r < ns and ptr[r] < goal:
+            r += 1
+        rows[b] = r
+    rows[nblocks] = ns
+    nptr = np.empty(ns + 1, np.int64)
+    ends = np.empty(nblocks, np.int64)
+    for b in prange(nblocks):
+        ends[b] = _cut_rows(rows[b], rows[b + 1], x, nodes, n_thick, s_thick, s_depth, s_two,
+                            cen, nrm, rad2, warp, oseg, margin, ptr, cand, nptr)
     w = 0
-    start = ptr[0]
-    for i in range(ns):
-        end = ptr[i + 1]
-        nd = nodes[i]
-        px = x[nd, 0]
-        py = x[nd, 1]
-        pz = x[nd, 2]
-        tn = n_thick[i]
-        ptr[i] = w
-        for q in range(start, end):
-            s = cand[q]
-            keep = s == oseg[i]
-            if not keep:
-                reach = 0.5 * (tn + s_thick[s])
-                reach = max(reach, release_depth(s_depth[s], reach, s_two[s] != 0))
-                rx = px - cen[s, 0]
-                ry = py - cen[s, 1]
-                rz = pz - cen[s, 2]
-                dn = abs(rx * nrm[s, 0] + ry * nrm[s, 1] + rz * nrm[s, 2])
-                lat = math.sqrt(max(rx * rx + ry * ry + rz * rz - dn * dn, 0.0))
-                rad = math.sqrt(rad2[s])
-                el = max(lat - _WIDEN * rad, 0.0)
-                en = max(dn - _WIDEN * warp[s], 0.0)
-                lim = (1.0 + 1.0e-6) * reach + _WIDEN * margin + 1.0e-4 * rad + 1.0e-9
-                keep = el * el + en * en <= lim * lim
-            if keep:
-                cand[w] = s
-                w += 1
-        start = end
-    ptr[ns] = w
+    for b in range(nblocks):  # blocks in order: each moves down (never past a later one)
+        r0 = rows[b]
+        r1 = rows[b + 1]
+        if r0 == r1:
+            continue
+        src = ptr[r0]
+        shift = src - w
+        for q in range(src, ends[b]):
+            cand[q - shift] = cand[q]
+        for i in range(r0, r1):
+            nptr[i] -= shift
+        w += ends[b] - src
+    nptr[ns] = w
+    ptr[:] = nptr
     return w
 
 

@@ -39,7 +39,7 @@ import math
 from typing import ClassVar
 
 import numpy as np
-from numba import get_num_threads
+from numba import get_num_threads, njit
 
 from hollowbody.contact.bucket import bucket_sort, dynamic_blocks
 from hollowbody.contact.checks import clean_surface, segment_elements
@@ -60,6 +60,7 @@ from hollowbody.contact.kinematic_step import max_speed2, passes_step, work_arra
 from hollowbody.contact.law import CAP_LIMIT, STIFFEN_FRACTION, STIFFEN_LIMIT
 from hollowbody.contact.nearlist import (
     distance_cut,
+    distance_cut_parallel,
     keep_current,
     near_filter,
     near_filter_parallel,
@@ -502,9 +503,12 @@ class ContactRuntime:
             p.n_box_pairs = p.cand.shape[0]
             # re-sorted when a side of the displacements' box reaches the margin: node and
             # segment approach by less than sqrt(3) margins in space (penalty.gather)
-            m = distance_cut(self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen,
-                             p.nrm, p.rad2, p.warp, p.oseg, _SQRT3 * self._margin, p.ptr,
-                             p.cand)
+            cut = (self._xl, p.nodes, p.n_thick, p.s_thick, p.s_depth, p.s_two, p.cen, p.nrm,
+                   p.rad2, p.warp, p.oseg, _SQRT3 * self._margin, p.ptr, p.cand)
+            if self._threaded(p, lists=True):
+                m = distance_cut_parallel(*cut, FILTER_BLOCKS_PER_THREAD * get_num_threads())
+            else:
+                m = distance_cut(*cut)
             p.cand = p.cand[:m]
             if not p.seg_alive.all():
                 p.ptr, p.cand = _drop_dead(p.ptr, p.cand, p.seg_alive)
@@ -657,8 +661,20 @@ def _drop_dead(ptr: np.ndarray, cand: np.ndarray, alive: np.ndarray
     return kept_before[ptr], np.ascontiguousarray(cand[keep])
 
 
+@njit(cache=True)
 def _listed(cand: np.ndarray, nseg: int) -> np.ndarray:
     """(k,) int32 ascending: the segments that appear in cand (of nseg)."""
-    seen = np.zeros(nseg, dtype=bool)
-    seen[cand] = True
-    return np.nonzero(seen)[0].astype(np.int32)
+    seen = np.zeros(nseg, dtype=np.bool_)
+    k = 0
+    for q in range(cand.shape[0]):
+        s = cand[q]
+        if not seen[s]:
+            seen[s] = True
+            k += 1
+    out = np.empty(k, np.int32)
+    k = 0
+    for s in range(nseg):
+        if seen[s]:
+            out[k] = s
+            k += 1
+    return out

@@ -128,7 +128,7 @@ def test_skipping_pairs_keeps_the_smallest_step_below_the_limit(parallel):
     kern = approach_step if parallel else approach_step_serial
     wd, wr = work_arrays(ns)
     checked = 0
-    for trial in range(20):
+    for _trial in range(20):
         v = rng.normal(0.0, 10.0, x.shape)
         wmax = 2.0 * math.sqrt(max_speed2(v))
         args = (act, x, v, nodes, thick, seg, s_thick, s_depth, s_two, cen, nrm, rad2, ptr,

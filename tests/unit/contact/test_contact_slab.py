@@ -23,7 +23,7 @@ from numba import njit
 from hollowbody.contact.detect import detect_pass_serial
 from hollowbody.contact.frames import SLAB_COLS, segment_frames, slab_bound
 from hollowbody.contact.geometry import project_corners
-from hollowbody.contact.nearlist import distance_cut
+from hollowbody.contact.nearlist import distance_cut, distance_cut_parallel
 
 
 @njit(cache=True)
@@ -219,3 +219,27 @@ def test_distance_cut_keeps_every_pair_that_can_come_into_contact():
         missed = [(int(i), int(s)) for i, s in pairs if (int(i), int(s)) not in kept]
         assert not missed
     assert found > 200
+
+
+@pytest.mark.parametrize("nblocks", [1, 2, 3, 7, 40])
+def test_threaded_distance_cut_gives_the_serial_lists(nblocks):
+    """The threaded cut (blocks of rows compacted each in its own range, then moved
+    together) gives the serial cut's lists entry for entry, with rows kept whole
+    (some rows hold a current contact segment, kept whatever its distance), also
+    with more blocks than rows have pairs for (empty blocks)."""
+    rng = np.random.default_rng(11)
+    x, seg = _crumpled_pile(rng, layers=3, n=6, gap=2.5, amp=1.2)
+    ns, nseg = x.shape[0], seg.shape[0]
+    nodes = np.arange(ns, dtype=np.int32)
+    frames = [np.zeros((nseg, 3)), np.zeros((nseg, 3)), np.zeros(nseg), np.zeros(nseg)]
+    segment_frames(x, seg, *frames, np.zeros((nseg, SLAB_COLS)))
+    oseg = np.full(ns, -1, np.int32)
+    oseg[rng.choice(ns, ns // 5, replace=False)] = rng.integers(0, nseg, ns // 5)
+    args = (x, nodes, rng.uniform(0.5, 2.0, ns), np.full(nseg, 1.5), np.full(nseg, 1.6),
+            np.ones(nseg, np.int8), *frames, oseg, 1.0)
+    ptr_a, cand_a = _all_pairs(nodes, seg)
+    ptr_b, cand_b = ptr_a.copy(), cand_a.copy()
+    ma = distance_cut(*args, ptr_a, cand_a)
+    mb = distance_cut_parallel(*args, ptr_b, cand_b, nblocks)
+    assert ma == mb and ma < cand_a.shape[0] // 2
+    assert np.array_equal(ptr_a, ptr_b) and np.array_equal(cand_a[:ma], cand_b[:mb])
