@@ -37,7 +37,8 @@ def one_run(out: Path, structure: str, speed: float, threads: int, wait: str,
     cmd = [sys.executable, "-m", "hollowbody", "block", "--structure", structure,
            "--speed", f"{speed:g}", "--threads", str(threads), "--no-vtk", "--quiet",
            "--overwrite", "--out", str(out), *extra]
-    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)  # the runs' warnings: in their summaries
     s = json.loads((out / "summary.json").read_text())
     t = s["timing_seconds"]
     return {"wall": s["wall_seconds"], "elements": t["elements"], "contact": t["contact"],
