@@ -42,7 +42,7 @@ def one_run(out: Path, structure: str, speed: float, threads: int, wait: str,
     s = json.loads((out / "summary.json").read_text())
     t = s["timing_seconds"]
     return {"wall": s["wall_seconds"], "elements": t["elements"], "contact": t["contact"],
-            "cycles": s["cycles"], "dropped": "threads_dropped" in s}
+            "cycles": s["cycles"], "dropped": "thread_changes" in s}
 
 
 def main() -> None:

@@ -16,10 +16,14 @@ runnable but waiting for a core (``/proc/self/task/*/schedstat``, second field,
 ns), per second of wall time and per thread. On an idle machine that share is
 1-3 %; with a second process on one of two cores it is 23 % (sleeping threads)
 to 45 % (spinning ones). After :data:`WINDOWS` windows of :data:`WINDOW_SECONDS`
-in a row above :data:`THRESHOLD` the run drops to one thread for the rest of the
-run (its results then differ from an undisturbed run's in round-off only) and says
-so in the log and ``summary.json`` (``threads_dropped``). It never goes back up: with
-one thread the share no longer tells whether a second core is free.
+in a row above :data:`THRESHOLD` the run drops to one thread (its results then
+differ from an undisturbed run's in round-off only). With one thread the share no
+longer tells whether a second core is free, so the run tries its threads again
+after :data:`RETRY_SECONDS` of wall time, for one window: when they no longer wait
+it keeps them, else it drops again and waits twice as long before the next try (up
+to :data:`RETRY_MAX_SECONDS`). Kept changes are said in the log and listed in
+``summary.json`` (``thread_changes``); a long run on a machine whose other load
+comes and goes follows it.
 
 Linux only (:func:`available`); elsewhere runs keep the passive wait policy.
 """
@@ -38,6 +42,10 @@ THRESHOLD = 0.15
 #: Contended windows in a row before the run drops to one thread (a short burst of
 #: another process, e.g. a compile, does not count).
 WINDOWS = 2
+#: Wall seconds on one thread before the run tries its threads again ...
+RETRY_SECONDS = 30.0
+#: ... doubled after each try that found them still waiting, up to this.
+RETRY_MAX_SECONDS = 480.0
 
 _TASKS = "/proc/self/task"
 
@@ -68,10 +76,11 @@ def available() -> bool:
 
 
 class ContentionGuard:
-    """Drops a threaded run to one thread when its threads keep waiting for cores.
+    """Drops a threaded run to one thread while its threads keep waiting for cores,
+    and gives them back when cores are free again (module docstring).
 
     threads: the run's thread count (the guard does nothing below 2);
-    set_threads: called with 1 when the run drops (``numba.set_num_threads``);
+    set_threads: called with the new count (default ``numba.set_num_threads``);
     delay, clock: seconds waited (:func:`run_delay`) and wall seconds
     (``time.perf_counter``), replaceable for tests.
     """
@@ -89,32 +98,61 @@ class ContentionGuard:
         if self._d0 != self._d0:  # NaN: not reported here
             self.active = False
         self._run = 0
+        #: threads the run uses now
+        self.current = self.threads
+        self._probing = False
+        self._retry = RETRY_SECONDS
+        self._next_try = 0.0
         #: waiting share of each window measured so far (the last :data:`WINDOWS`)
         self.shares: list[float] = []
-        #: (share that made the run drop, or None)
-        self.dropped: float | None = None
+        #: tries that found the threads still waiting
+        self.failed_tries = 0
 
-    def check(self) -> float | None:
-        """Called once per cycle (cheap between windows). Returns the waiting share
-        when the run has just dropped to one thread, else None."""
-        if not self.active:
-            return None
-        w = self._clock()
-        if w - self._w0 < WINDOW_SECONDS:
-            return None
-        d = self._delay()
-        share = (d - self._d0) / ((w - self._w0) * self.threads)
-        self._w0, self._d0 = w, d
-        self.shares = (self.shares + [share])[-WINDOWS:]
-        self._run = self._run + 1 if share > THRESHOLD else 0
-        if self._run < WINDOWS:
-            return None
-        self.active = False
-        self.dropped = share
+    def _use(self, n: int) -> None:
+        self.current = n
         if self._set is None:
             import numba
 
-            numba.set_num_threads(1)
+            numba.set_num_threads(n)
         else:
-            self._set(1)
-        return share
+            self._set(n)
+
+    def check(self) -> tuple[int, float] | None:
+        """Called once per cycle (cheap between windows). Returns (new thread count,
+        waiting share of the window that decided it) when the run has just dropped to
+        one thread or got its threads back for good; None otherwise (also while a try
+        is under way, and when a try fails: the count goes back to one silently)."""
+        if not self.active:
+            return None
+        w = self._clock()
+        if self.current == 1:  # waiting for the next try
+            if w < self._next_try:
+                return None
+            self._use(self.threads)
+            self._probing = True
+            self._w0, self._d0 = w, self._delay()
+            return None
+        if w - self._w0 < WINDOW_SECONDS:
+            return None
+        d = self._delay()
+        share = (d - self._d0) / ((w - self._w0) * self.current)
+        self._w0, self._d0 = w, d
+        self.shares = (self.shares + [share])[-WINDOWS:]
+        if self._probing:
+            self._probing = False
+            if share > THRESHOLD:  # still busy: one thread again, wait longer
+                self.failed_tries += 1
+                self._retry = min(2.0 * self._retry, RETRY_MAX_SECONDS)
+                self._use(1)
+                self._next_try = w + self._retry
+                return None
+            self._retry = RETRY_SECONDS
+            self._run = 0
+            return self.threads, share
+        self._run = self._run + 1 if share > THRESHOLD else 0
+        if self._run < WINDOWS:
+            return None
+        self._run = 0
+        self._use(1)
+        self._next_try = w + self._retry
+        return 1, share

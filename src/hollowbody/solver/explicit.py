@@ -321,20 +321,25 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
 
 
 def _watch_threads(extra: dict, state: State, progress: Progress) -> None:
-    """One thread from now on when the run's threads keep waiting for cores
-    (:class:`~hollowbody.solver.contention.ContentionGuard`): said in the log and in
-    ``summary.json`` (``threads_dropped``)."""
+    """One thread while the run's threads keep waiting for cores, all of them again
+    when cores are free (:class:`~hollowbody.solver.contention.ContentionGuard`): each
+    kept change said in the log and listed in ``summary.json`` (``thread_changes``)."""
     guard = extra["_guard"]
-    share = guard.check()
-    if share is None:
+    change = guard.check()
+    if change is None:
         return
-    extra["threads_dropped"] = {"time_ms": round(state.t, 6), "cycle": state.cycle,
-                                "from": guard.threads, "to": 1,
-                                "waiting_share": round(share, 3)}
-    del extra["_guard"]
-    progress.note(f"threads: {guard.threads} -> 1 at t={state.t:.6g} ms (cycle {state.cycle}): "
-                  f"the run's threads waited {100.0 * share:.0f} % of their time for a core "
-                  "held by other processes")
+    n, share = change
+    extra.setdefault("thread_changes", []).append(
+        {"time_ms": round(state.t, 6), "cycle": state.cycle, "threads": n,
+         "waiting_share": round(share, 3)})
+    if n == 1:
+        progress.note(f"threads: {guard.threads} -> 1 at t={state.t:.6g} ms (cycle "
+                      f"{state.cycle}): the run's threads waited {100.0 * share:.0f} % of "
+                      "their time for a core held by other processes")
+    else:
+        progress.note(f"threads: 1 -> {n} at t={state.t:.6g} ms (cycle {state.cycle}): "
+                      f"cores free again (the threads waited {100.0 * share:.0f} % of "
+                      "their time)")
 
 
 def _wall_total(extra: dict) -> float:

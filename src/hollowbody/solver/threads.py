@@ -40,7 +40,7 @@ threads and 4.9-5.1 s on two short-spinning ones (contact kernels threaded from
 
 The command line uses ``auto`` (``--threads N|auto``); the Python API keeps
 the caller's count unless ``threads`` is given. The count used is recorded in
-``summary.json`` (``"threads"``; ``"threads_dropped"`` when the guard dropped it).
+``summary.json`` (``"threads"``; ``"thread_changes"`` when the guard changed it).
 """
 
 from __future__ import annotations

@@ -45,7 +45,7 @@ def test_an_idle_machine_keeps_the_threads():
     for _ in range(20):
         c.advance(0.3, 0.02)
         assert g.check() is None
-    assert calls == [] and g.active and g.dropped is None
+    assert calls == [] and g.active and g.current == 2
     assert g.shares and all(s == pytest.approx(0.02) for s in g.shares)
 
 
@@ -60,10 +60,47 @@ def test_a_busy_machine_drops_to_one_thread_after_windows_in_a_row():
     for _ in range(ct.WINDOWS):
         c.advance(ct.WINDOW_SECONDS, 0.4)
         got = g.check()
-    assert got == pytest.approx(0.4) and calls == [1]
-    assert not g.active and g.dropped == pytest.approx(0.4)
-    c.advance(10.0, 0.9)
-    assert g.check() is None and calls == [1]  # never again
+    assert got == (1, pytest.approx(0.4)) and calls == [1] and g.current == 1
+    c.advance(0.5 * ct.RETRY_SECONDS, 0.0, threads=1)
+    assert g.check() is None and calls == [1]  # no try before RETRY_SECONDS
+
+
+def busy_then_try(c: Clock, g: ct.ContentionGuard) -> None:
+    for _ in range(ct.WINDOWS):
+        c.advance(ct.WINDOW_SECONDS, 0.4)
+        g.check()
+    assert g.current == 1
+
+
+def test_the_threads_come_back_when_the_cores_are_free_again():
+    c = Clock()
+    g, calls = guard(c)
+    busy_then_try(c, g)
+    c.advance(ct.RETRY_SECONDS, 0.0, threads=1)
+    assert g.check() is None and calls == [1, 2] and g.current == 2  # the try starts
+    c.advance(ct.WINDOW_SECONDS, 0.02)
+    assert g.check() == (2, pytest.approx(0.02))  # kept: said once
+    assert g.current == 2 and calls == [1, 2]
+    c.advance(10 * ct.WINDOW_SECONDS, 0.02)
+    assert g.check() is None and calls == [1, 2]
+
+
+def test_a_failed_try_goes_back_to_one_thread_and_waits_twice_as_long():
+    c = Clock()
+    g, calls = guard(c)
+    busy_then_try(c, g)
+    wait = ct.RETRY_SECONDS
+    for k in range(6):
+        c.advance(0.9 * wait, 0.0, threads=1)
+        assert g.check() is None and g.current == 1  # not yet
+        c.advance(0.1 * wait, 0.0, threads=1)
+        assert g.check() is None and g.current == 2  # a try
+        c.advance(ct.WINDOW_SECONDS, 0.4)
+        assert g.check() is None and g.current == 1  # still busy: silently back
+        assert g.failed_tries == k + 1
+        wait = min(2.0 * wait, ct.RETRY_MAX_SECONDS)
+    assert wait == ct.RETRY_MAX_SECONDS  # the waits grew to the cap
+    assert calls == [1] + [2, 1] * 6
 
 
 def test_share_is_per_thread_and_per_wall_second():
@@ -77,7 +114,7 @@ def test_share_is_per_thread_and_per_wall_second():
 def test_no_guard_for_one_thread_or_without_the_kernel_report():
     c = Clock()
     g, calls = guard(c, threads=1)
-    c.advance(5.0, 0.9)
+    c.advance(5.0, 0.9, threads=1)
     assert not g.active and g.check() is None and calls == []
     g = ct.ContentionGuard(2, set_threads=calls.append, delay=lambda: math.nan,
                            clock=c.wall)
@@ -131,8 +168,8 @@ def test_a_dropped_run_says_so_in_the_summary(tmp_path, monkeypatch):
     res = run(model, RunOptions(out_dir=tmp_path / "run", end_time=0.05, threads=2,
                                 quiet=True, vtk=False))
     s = json.loads((tmp_path / "run" / "summary.json").read_text())
-    d = s["threads_dropped"]
-    assert d["from"] == 2 and d["to"] == 1 and d["waiting_share"] == pytest.approx(0.5)
+    (d,) = s["thread_changes"]  # dropped; no try within the run's wall time
+    assert d["threads"] == 1 and d["waiting_share"] == pytest.approx(0.5)
     assert 0.0 < d["time_ms"] <= 0.05 and d["cycle"] >= ct.WINDOWS
     log = (tmp_path / "run" / "messages.log").read_text()
     assert "threads: 2 -> 1" in log and "waited 50 %" in log
