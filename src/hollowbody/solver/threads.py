@@ -33,10 +33,11 @@ The ``auto`` policy:
 
 On the 2-core machine of BENCHMARKS.md: the block test (solid, 40 km/h, 4 ms)
 with a second process keeping one core busy took 18.7 s on one thread, 60 s on
-two long-spinning threads and 11.3 s on two passive ones; the hollow block at
-100 km/h on an idle machine took 7.1 s on one thread, 6.4-7.0 s on two passive
-threads and 4.9-5.1 s on two short-spinning ones (contact kernels threaded from
-:data:`PER_CYCLE_MIN_ROWS` rows).
+two long-spinning threads and 11.3 s on two passive ones; the calibrated hollow
+block at 100 km/h on an idle machine took 7.1 s on one thread, 7.8 s on two passive
+threads and 6.0 s on two short-spinning ones (medians of 3; contact kernels threaded
+from :data:`PER_CYCLE_MIN_ROWS` rows), the solid block test (40 km/h, 20 ms) 27.1 s on
+two passive threads and 22.3-23.3 s on two short-spinning ones.
 
 The command line uses ``auto`` (``--threads N|auto``); the Python API keeps
 the caller's count unless ``threads`` is given. The count used is recorded in
