@@ -30,6 +30,7 @@ Linux only (:func:`available`); elsewhere runs keep the passive wait policy.
 
 from __future__ import annotations
 
+import math
 import os
 import time
 from collections.abc import Callable
@@ -72,7 +73,7 @@ def run_delay() -> float:
 
 def available() -> bool:
     """Whether this platform reports the run delay (:func:`run_delay`)."""
-    return run_delay() == run_delay()  # not NaN
+    return not math.isnan(run_delay())
 
 
 class ContentionGuard:
@@ -95,7 +96,7 @@ class ContentionGuard:
         self._clock = clock
         self._w0 = clock()
         self._d0 = delay() if self.active else 0.0
-        if self._d0 != self._d0:  # NaN: not reported here
+        if math.isnan(self._d0):  # not reported here
             self.active = False
         self._run = 0
         #: threads the run uses now

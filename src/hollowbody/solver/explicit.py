@@ -219,7 +219,7 @@ def run(model, options: RunOptions) -> RunResult:  # noqa: ANN001 - Model
                         if watch.compiled:
                             progress.note(f"{COMPILE_NOTICE}: {watch.seconds:.1f} s")
                         progress.begin(state.t)
-                        if policy != "passive":  # spinning threads: watched
+                        if policy != "passive" and n_threads > 1:  # spinning: watched
                             extra["_guard"] = ContentionGuard(n_threads)
                         _loop(model, plan, state, outputs, progress, stop, end_time, dumps,
                               extra)
