@@ -304,9 +304,9 @@ def _loop(model, plan, state: State, outputs: RunOutputs, progress: Progress,  #
             elem, pid = state.dt_crit_elem
             raise Termination(ERROR, f"time step collapsed to zero at t={state.t:.6g} ms "
                               f"(element {elem}, part {pid})", element=elem, part=pid)
-        if dtmin > 0.0 and not plan.erode and state.dt_next < dtmin * state.dt0:
+        if dtmin > 0.0 and not plan.erode and state.dt_stable < dtmin * state.dt0:
             elem, pid = state.dt_crit_elem
-            raise Termination(ERROR, f"time step {state.dt_next:.4e} ms below DTMIN "
+            raise Termination(ERROR, f"time step {state.dt_stable:.4e} ms below DTMIN "
                               f"({dtmin:g} x initial) set by {_step_setter(state)} "
                               f"at t={state.t:.6g} ms", element=elem, part=pid)
         outputs.record(state)

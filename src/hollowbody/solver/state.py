@@ -20,6 +20,7 @@ mass is 0).
 from __future__ import annotations
 
 import copy
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -29,7 +30,9 @@ from hollowbody.solver.monitors import Monitors
 
 #: Scalars and arrays of the State itself that a snapshot carries.
 STATE_SCALARS = ("t", "cycle", "dt", "dt_next", "dt0", "dt_min", "dtmin_abs", "dt_crit_elem",
-                 "dt_contact", "ext_work", "e0", "n_eroded", "timing")
+                 "dt_contact", "ext_work", "e0", "n_eroded", "timing", "dt_stable", "dt_control")
+#: Scalars added after restart files were first written: their value when a file lacks them.
+_LATER_SCALARS = {"dt_stable": 0.0, "dt_control": (0.0, 0, math.inf)}
 STATE_ARRAYS = ("x", "v", "f", "w", "mom", "node_mass", "inv_m", "node_rot_inertia", "inv_i")
 
 
@@ -38,7 +41,9 @@ class State:
     """Time-varying data of one run (see the module docstring for shapes and units).
 
     t: ms; cycle: completed cycles; dt: the last step taken (ms); dt_next: the
-    next step, TSSFAC * smallest critical step (ms); dt0: the first step;
+    next step (ms), ``dt_stable`` as :mod:`hollowbody.solver.step_control` lets it
+    change; dt_stable: TSSFAC * smallest critical step, lowered by the contacts'
+    kinematic limit (ms); dt_control: that control's state; dt0: the first step;
     dt_min: the smallest stable step taken (a last step cut short to land on the
     end time is not counted); dtmin_abs: DTMIN x dt0 (ms, 0 = off);
     dt_crit_elem: (element id, part id) whose critical step is the smallest;
@@ -65,6 +70,8 @@ class State:
     cycle: int = 0
     dt: float = 0.0
     dt_next: float = 0.0
+    dt_stable: float = 0.0
+    dt_control: tuple[float, int, float] = (0.0, 0, math.inf)
     dt0: float = 0.0
     dt_min: float = np.inf
     dtmin_abs: float = 0.0
@@ -181,7 +188,7 @@ def restore(state: State, snap: dict[str, object]) -> None:
             raise ValueError(f"the saved {name} has shape {value.shape}, not {cur.shape}")
         cur[...] = value
     for name in STATE_SCALARS:
-        setattr(state, name, copy.deepcopy(own[name]))
+        setattr(state, name, copy.deepcopy(own[name] if name in own else _LATER_SCALARS[name]))
     if "monitors" in own:
         if state.monitors is None:
             state.monitors = Monitors(dt_initial=state.dt0)
