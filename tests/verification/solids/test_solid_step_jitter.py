@@ -70,14 +70,16 @@ def test_block_dropped_on_a_wall_is_stable_at_every_step_factor(factor):
     the instantaneous ratio carries the O((omega dt / 2)^2) error of the full-step
     kinetic energy of a mode near the limit (up to 1.24 at single cycles), so the
     checks are on averages: the mean ratio over 20-30 ms within 3 % of 1 (measured
-    1.011-1.026) and no growth: its maximum over 20-30 ms at most 0.02 above that over
-    5-15 ms (measured 0.01-0.06 below). The step of the ringing block varies by less
-    than 1 % from cycle to cycle (measured 0.13-0.22 %; with the compression-only Q
-    6 %)."""
+    1.011-1.026) and no growth: that mean at most 0.02 above the mean over 5-15 ms
+    (measured 0.005-0.009 above; an exponential pumping grows the mean). Single-cycle
+    maxima are not compared: with the steady step of the step control (a constant step
+    over the last 200 cycles here) they moved by up to +-0.06 while the means moved by
+    0.002. The step of the ringing block varies by less than 1 % from cycle to cycle
+    (measured 0.13-0.22 % as the stable step; with the compression-only Q 6 %)."""
     _, steps, ratio = _drop(factor)
     late = ratio[ratio[:, 0] > 20.0, 1]
     mid = ratio[(ratio[:, 0] > 5.0) & (ratio[:, 0] < 15.0), 1]
     assert abs(late.mean() - 1.0) < 0.03
-    assert late.max() <= mid.max() + 0.02
+    assert late.mean() <= mid.mean() + 0.02
     tail = steps[-200:]
     assert np.max(np.abs(np.diff(tail))) / tail[-1] < 0.01

