@@ -41,9 +41,10 @@ class State:
     """Time-varying data of one run (see the module docstring for shapes and units).
 
     t: ms; cycle: completed cycles; dt: the last step taken (ms); dt_next: the
-    next step (ms), ``dt_stable`` as :mod:`hollowbody.solver.step_control` lets it
-    change; dt_stable: TSSFAC * smallest critical step, lowered by the contacts'
-    kinematic limit (ms); dt_control: that control's state; dt0: the first step;
+    next step (ms): TSSFAC * smallest critical step as
+    :mod:`hollowbody.solver.step_control` lets it change (dt_control: that control's
+    state), lowered by the contacts' kinematic limit; dt_stable: TSSFAC * smallest
+    critical step or that limit when smaller (ms); dt0: the first step;
     dt_min: the smallest stable step taken (a last step cut short to land on the
     end time is not counted); dtmin_abs: DTMIN x dt0 (ms, 0 = off);
     dt_crit_elem: (element id, part id) whose critical step is the smallest;

@@ -9,10 +9,10 @@ The cycle from t^n to t^{n+1} (order as in the LS-DYNA / OpenRadioss engines):
 3. positions x^{n+1} = x^n + dt v^{n+1/2} (rigid nodes placed by their body,
    tied slaves by their segments);
 4. forces f^{n+1}: element internal + hourglass + bulk viscosity, contact,
-   ties; rigid-body resultants; mass scaling; the stable step
-   TSSFAC * min dt_crit, lowered where a contact closes fast (no node crosses
-   its contact band in one step), and from it the next step dt^{n+1}
-   (:mod:`hollowbody.solver.step_control`: down at once, up when lasting).
+   ties; rigid-body resultants; mass scaling; the next step dt^{n+1} from the
+   stable step TSSFAC * min dt_crit (:mod:`hollowbody.solver.step_control`:
+   down at once, up when lasting), lowered where a contact closes fast (no
+   node crosses its contact band in one step).
 
 ``plan`` is the static :class:`~hollowbody.solver.setup.Assembly`; everything
 that changes lives in ``state`` (:class:`~hollowbody.solver.state.State`).
@@ -176,15 +176,15 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
         ms.apply(state.v, state.w if plan.has_rotations else None)
         if ms.target > 0.0:
             dt_crit, elem, pid = ms.critical_step()
-    state.dt_next = plan.tssfac * dt_crit
+    stable = plan.tssfac * dt_crit
+    control = StepControl(*state.dt_control)  # a steady step (solver.step_control)
+    state.dt_next = control.next_step(stable)
+    state.dt_control = control.state
     state.dt_crit_elem = (elem, pid)
     t4 = time.perf_counter()
     state.dt_contact = _contact_limit(plan, state)
     state.timing["contact"] += time.perf_counter() - t4  # the contacts' step limit
-    control = StepControl(*state.dt_control)  # a steady step (solver.step_control)
-    state.dt_stable = state.dt_next
-    state.dt_next = control.next_step(state.dt_stable)
-    state.dt_control = control.state
+    state.dt_stable = min(stable, state.dt_next)
     if ended is not None:
         raise ended
     if ms.target > 0.0 and ms.percent_added > model.controls.endmas:
