@@ -244,3 +244,29 @@ def test_block_resumed_after_ctrl_c_continues_bit_for_bit(structure, tmp_path, m
     res2 = _run(deck, tmp_path / "cut", end_time=end, restart="newest")
     assert res2.cycles == ref.cycles
     _same_histories(tmp_path / "ref", tmp_path / "cut")
+
+
+def test_a_dump_without_the_step_control_resumes(tmp_path, monkeypatch, reference):
+    """A dump written before the step control (no ``dt_stable`` / ``dt_control`` in the
+    State) is read: the control starts over from the stable step at the resume (here
+    above the step it held: the steps differ from there on) and the run ends normally
+    at the end time, its energy as balanced as the uninterrupted run's."""
+    from hollowbody.solver.restart import write_dump
+
+    ref_out, ref = reference
+    _interrupt_at(monkeypatch, 57)
+    _run(_deck(), tmp_path)
+    monkeypatch.undo()
+    dump = dump_files(tmp_path)[0]
+    model = build_model(_deck())
+    header, payload = read_dump(dump, model)
+    own = payload["state"]["state"]
+    assert own.pop("dt_stable") > 0.0 and own.pop("dt_control")[0] > 0.0
+    write_dump(dump, model, payload, header["time_ms"], header["cycle"])
+    res = _run(_deck(), tmp_path, restart="newest")
+    assert res.status == "normal termination"
+    assert abs(res.cycles - ref.cycles) <= 0.05 * ref.cycles
+    a = json.loads((tmp_path / "summary.json").read_text())
+    b = json.loads((ref_out / "summary.json").read_text())
+    assert a["end_time_ms"] == pytest.approx(b["end_time_ms"], rel=1e-12)
+    assert abs(a["energy_ratio"] - b["energy_ratio"]) < 1e-3
