@@ -41,6 +41,7 @@ from hollowbody.solver.energies import energies, node_velocity_full_step
 from hollowbody.solver.energy_kernels import share_energy
 from hollowbody.solver.joints import JointTerm
 from hollowbody.solver.run_lock import check_free
+from hollowbody.solver.step_control import StepControl
 from hollowbody.solver.verdict import OK, Thresholds, assess, before_error, headline
 
 DEFAULT_HISTORY_COUNT = 500
@@ -460,6 +461,8 @@ class RunOutputs:
             "cycles": state.cycle,
             "dt_initial_ms": state.dt0 if state.dt0 > 0.0 else None,
             "dt_min_ms": None if not np.isfinite(state.dt_min) else state.dt_min,
+            # how far the step control held the step below the stable step
+            "step_control": StepControl(*state.dt_control).summary(),
             "element_counts": self.asm.element_counts(),
             "nodes": int(self.model.n_nodes),
             "eroded_elements": state.n_eroded,

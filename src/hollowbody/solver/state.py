@@ -32,7 +32,7 @@ from hollowbody.solver.monitors import Monitors
 STATE_SCALARS = ("t", "cycle", "dt", "dt_next", "dt0", "dt_min", "dtmin_abs", "dt_crit_elem",
                  "dt_contact", "ext_work", "e0", "n_eroded", "timing", "dt_stable", "dt_control")
 #: Scalars added after restart files were first written: their value when a file lacks them.
-_LATER_SCALARS = {"dt_stable": 0.0, "dt_control": (0.0, 0, math.inf)}
+_LATER_SCALARS = {"dt_stable": 0.0, "dt_control": (0.0, 0, math.inf, 0, 0, 0.0)}
 STATE_ARRAYS = ("x", "v", "f", "w", "mom", "node_mass", "inv_m", "node_rot_inertia", "inv_i")
 
 
@@ -72,7 +72,7 @@ class State:
     dt: float = 0.0
     dt_next: float = 0.0
     dt_stable: float = 0.0
-    dt_control: tuple[float, int, float] = (0.0, 0, math.inf)
+    dt_control: tuple[float, int, float, int, int, float] = (0.0, 0, math.inf, 0, 0, 0.0)
     dt0: float = 0.0
     dt_min: float = np.inf
     dtmin_abs: float = 0.0

@@ -49,19 +49,33 @@ class StepControl:
 
     State (saved in restart files through :attr:`state`): ``hold`` ms the current
     step (0 before the first cycle), ``streak`` the cycles in a row whose stable step
-    allowed a rise, ``streak_min`` ms the smallest stable step of those cycles.
+    allowed a rise, ``streak_min`` ms the smallest stable step of those cycles; and
+    for the run's summary: ``cycles`` with a finite stable step, ``held`` of them
+    with the step below the stable step, ``ratio_sum`` the sum of step / stable step.
     """
 
-    def __init__(self, hold: float = 0.0, streak: int = 0,
-                 streak_min: float = math.inf) -> None:
+    def __init__(self, hold: float = 0.0, streak: int = 0, streak_min: float = math.inf,
+                 cycles: int = 0, held: int = 0, ratio_sum: float = 0.0) -> None:
         self.hold = float(hold)
         self.streak = int(streak)
         self.streak_min = float(streak_min)
+        self.cycles = int(cycles)
+        self.held = int(held)
+        self.ratio_sum = float(ratio_sum)
 
     @property
-    def state(self) -> tuple[float, int, float]:
-        """(hold ms, streak, streak_min ms)."""
-        return (self.hold, self.streak, self.streak_min)
+    def state(self) -> tuple[float, int, float, int, int, float]:
+        """(hold ms, streak, streak_min ms, cycles, held, ratio_sum)."""
+        return (self.hold, self.streak, self.streak_min, self.cycles, self.held,
+                self.ratio_sum)
+
+    def summary(self) -> dict[str, float | int | None]:
+        """``held_cycles``: cycles whose step was held below the stable step;
+        ``mean_step_over_stable``: the mean ratio of the step to the stable step (None
+        before the first cycle)."""
+        return {"held_cycles": self.held,
+                "mean_step_over_stable": (self.ratio_sum / self.cycles if self.cycles
+                                          else None)}
 
     def next_step(self, stable: float) -> float:
         """The step (ms) of the next cycle, given this cycle's stable step (ms; may be
@@ -70,8 +84,7 @@ class StepControl:
             return stable
         if self.hold <= 0.0:  # the first cycle
             self._set(stable)
-            return stable
-        if stable < self.hold:
+        elif stable < self.hold:
             self._set(stable)
         elif stable >= (1.0 + RISE_THRESHOLD) * self.hold:
             self.streak += 1
@@ -81,6 +94,10 @@ class StepControl:
         else:
             self.streak = 0
             self.streak_min = math.inf
+        self.cycles += 1
+        self.ratio_sum += self.hold / stable
+        if self.hold < stable:
+            self.held += 1
         return self.hold
 
     def _set(self, hold: float) -> None:

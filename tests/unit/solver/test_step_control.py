@@ -60,7 +60,8 @@ def test_no_finite_stable_step_is_passed_on_unchanged():
     ctl = StepControl()
     assert ctl.next_step(math.inf) == math.inf
     assert ctl.next_step(0.0) == 0.0
-    assert ctl.state == (0.0, 0, math.inf)
+    assert ctl.state == (0.0, 0, math.inf, 0, 0, 0.0)
+    assert ctl.summary() == {"held_cycles": 0, "mean_step_over_stable": None}
     ctl.next_step(2.0)
     assert math.isnan(ctl.next_step(math.nan)) and ctl.hold == 2.0
 
@@ -77,3 +78,11 @@ def test_its_state_carries_a_run_on_bit_for_bit():
     b = _feed(resumed, stable[237:])
     assert np.array_equal(np.concatenate([a, b]), ref)
     assert all(isinstance(v, (int, float)) for v in first.state)
+
+
+def test_its_summary_counts_the_held_cycles_and_the_mean_ratio():
+    ctl = StepControl()
+    _feed(ctl, [2.0, 1.0, 1.005, 1.5, 1.0])  # held at 1.0 below 1.005 and 1.5
+    assert ctl.summary()["held_cycles"] == 2
+    assert ctl.summary()["mean_step_over_stable"] == pytest.approx(
+        (1.0 + 1.0 + 1.0 / 1.005 + 1.0 / 1.5 + 1.0) / 5.0, rel=1e-15)
