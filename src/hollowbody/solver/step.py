@@ -178,13 +178,15 @@ def forces(model, plan, state, dt: float) -> None:  # noqa: ANN001
             dt_crit, elem, pid = ms.critical_step()
     stable = plan.tssfac * dt_crit
     control = StepControl(*state.dt_control)  # a steady step (solver.step_control)
-    state.dt_next = control.next_step(stable)
+    held = control.next_step(stable)
+    state.dt_next = held
     state.dt_control = control.state
     state.dt_crit_elem = (elem, pid)
     t4 = time.perf_counter()
     state.dt_contact = _contact_limit(plan, state)
     state.timing["contact"] += time.perf_counter() - t4  # the contacts' step limit
-    state.dt_stable = min(stable, state.dt_next)
+    # the stable step, or the contacts' limit where it set the step
+    state.dt_stable = state.dt_next if state.dt_next < held else stable
     if ended is not None:
         raise ended
     if ms.target > 0.0 and ms.percent_added > model.controls.endmas:

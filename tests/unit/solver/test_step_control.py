@@ -86,3 +86,4 @@ def test_its_summary_counts_the_held_cycles_and_the_mean_ratio():
     assert ctl.summary()["held_cycles"] == 2
     assert ctl.summary()["mean_step_over_stable"] == pytest.approx(
         (1.0 + 1.0 + 1.0 / 1.005 + 1.0 / 1.5 + 1.0) / 5.0, rel=1e-15)
+
