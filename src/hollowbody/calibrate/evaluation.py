@@ -68,18 +68,40 @@ def eroded_count(summary: dict | None) -> int | None:
         return None
 
 
+def energy_percent(summary: dict | None, part: str, of: str = "total") -> float | None:
+    """Energy ``part`` at the end of a run in % of energy ``of`` (keys of the summary's
+    ``energies_J``: kinetic, internal, hourglass, contact, total, ...); None when either
+    is not reported or ``of`` is not positive. An error termination's failing cycle can
+    be unbalanced: its last balanced record (``energies_before_error_J``) is read."""
+    s = summary or {}
+    e = s.get("energies_before_error_J") or s.get("energies_J") or {}
+    if not isinstance(e, dict):
+        return None
+    a, b = finite_or_none(e.get(part)), finite_or_none(e.get(of))
+    if a is None or b is None or b <= 0.0:
+        return None
+    return 100.0 * a / b
+
+
 def hourglass_percent(summary: dict | None) -> float | None:
     """Hourglass energy at the end of a run in % of its total energy (None if not reported).
 
     A quality indicator: above ~10 % the zero-energy modes carry a large share
     of the work and the force-displacement curve is questionable."""
+    return energy_percent(summary, "hourglass")
+
+
+def contact_time_percent(summary: dict | None) -> float | None:
+    """Wall time of a run's contacts (search, forces, step limit) in % of the run's
+    wall time (``timing_seconds.contact`` over ``wall_seconds_total``, which counts
+    the earlier parts of a restarted run as the timings do; None if not reported)."""
     s = summary or {}
-    # an error termination's failing cycle can be unbalanced: its last balanced record
-    e = s.get("energies_before_error_J") or s.get("energies_J") or {}
-    hg, total = finite_or_none(e.get("hourglass")), finite_or_none(e.get("total"))
-    if hg is None or total is None or total <= 0.0:
+    t = s.get("timing_seconds")
+    wall = finite_or_none(s.get("wall_seconds_total", s.get("wall_seconds")))
+    c = finite_or_none(t.get("contact")) if isinstance(t, dict) else None
+    if c is None or wall is None or wall <= 0.0:
         return None
-    return 100.0 * hg / total
+    return 100.0 * c / wall
 
 
 def pass_through_nodes(summary: dict | None) -> int | None:

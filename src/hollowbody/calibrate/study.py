@@ -8,8 +8,10 @@ a row::
      "requested_end_time_ms": 20.0, "cycles": 812, "wall_seconds": 31.0,
      "hexahedra": 6912, "shells": 960, "peak_force_kN": 21.3,
      "peak_force_raw_kN": 80.1, "max_displacement_mm": 60.2, "eroded_elements": 0,
-     "energy_ratio": 1.0, "hourglass_percent": 3.9, "pass_through_nodes": 0,
-     "quality": "ok", "quality_reasons": "", "run_dir": "..."}
+     "energy_ratio": 1.0, "hourglass_percent": 3.9,
+     "hourglass_internal_percent": 7.2, "contact_energy_percent": 2.5,
+     "contact_time_percent": 4.0, "pass_through_nodes": 0, "quality": "ok",
+     "quality_reasons": "", "run_dir": "..."}
 
 Element counts are the run's (the rigid impactor's shells included);
 ``eroded_elements`` is the number of elements the run deleted (the hollow
@@ -18,7 +20,11 @@ report it). Peak forces are CFC-filtered
 (:func:`hollowbody.curves.force_displacement.smoothed`) and raw (unfiltered, single-cycle
 contact spikes included). Quality indicators from the run's summary:
 ``energy_ratio`` (total / initial energy at the end), ``hourglass_percent``
-(hourglass energy in % of the total at the end) and ``pass_through_nodes``
+and ``hourglass_internal_percent`` (hourglass energy at the end in % of the
+total and of the internal energy), ``contact_energy_percent`` (the contacts'
+energy at the end in % of the total: negative when the contact springs did
+net work on the model), ``contact_time_percent`` (the contacts' share of the
+run's wall time) and ``pass_through_nodes``
 (nodes the contacts reported pushed through a surface); ``quality`` the run's
 verdict (ok / warning / suspect, :mod:`hollowbody.solver.verdict`) with its
 reasons in one line. A suspect run's curve is not trusted: it is flagged in
@@ -38,6 +44,8 @@ from pathlib import Path
 from typing import Any
 
 from hollowbody.calibrate.evaluation import (
+    contact_time_percent,
+    energy_percent,
     eroded_count,
     finite_or_none,
     hourglass_percent,
@@ -73,6 +81,8 @@ def _empty_row(task: StudyTask, status: str, reason: str) -> dict:
             "cycles": None, "wall_seconds": None, "hexahedra": None, "shells": None,
             "peak_force_kN": None, "peak_force_raw_kN": None, "max_displacement_mm": None,
             "eroded_elements": None, "energy_ratio": None, "hourglass_percent": None,
+            "hourglass_internal_percent": None, "contact_energy_percent": None,
+            "contact_time_percent": None,
             "pass_through_nodes": None, "outcome": None, "quality": None,
             "quality_reasons": None, "run_dir": task.run_dir}
 
@@ -103,6 +113,9 @@ def run_study_task(task: StudyTask) -> dict:
                 "eroded_elements": eroded_count(s),
                 "energy_ratio": finite_or_none(s.get("energy_ratio")),
                 "hourglass_percent": finite_or_none(hourglass_percent(s)),
+                "hourglass_internal_percent": energy_percent(s, "hourglass", "internal"),
+                "contact_energy_percent": energy_percent(s, "contact"),
+                "contact_time_percent": contact_time_percent(s),
                 "pass_through_nodes": pass_through_nodes(s),
                 "outcome": s.get("impact_outcome",
                                  impact_outcome(finite_or_none(curve.max_displacement))),

@@ -6,8 +6,9 @@ Files written by :func:`write_study_report` in the study folder:
   status and reason, end time (ms), cycles, wall time (s), element counts,
   eroded elements (the hollow block deletes wall shells crushed in their
   plane), peak force (kN; CFC-filtered and raw), maximum impactor
-  displacement (mm), energy ratio, hourglass energy (% of total) and contact
-  pass-through nodes;
+  displacement (mm), energy ratio, hourglass energy (% of total and of
+  internal), contact energy (% of total), contact wall time (% of the run's)
+  and contact pass-through nodes;
   the Markdown adds the solid/hollow wall-time ratio at every speed where
   both runs ended normally;
 - ``fd_<speed>kmh.png`` — solid vs hollow at one speed (raw curves faint, the
@@ -37,12 +38,15 @@ from hollowbody.scenarios.block import THROUGH_BASE
 COLUMNS = ("structure", "speed_kmh", "status", "quality", "reason", "end_time_ms", "cycles",
            "wall_seconds", "hexahedra", "shells", "eroded_elements", "peak_force_kN",
            "peak_force_raw_kN", "max_displacement_mm", "energy_ratio", "hourglass_percent",
+           "hourglass_internal_percent", "contact_energy_percent", "contact_time_percent",
            "pass_through_nodes", "outcome", "fitness_vs_solid")
 HEADERS = ("structure", "speed [km/h]", "status", "quality****", "reason", "end time [ms]",
            "cycles",
            "wall [s]", "hexahedra", "shells*", "eroded**", "peak force [kN] (filtered)",
            "peak force raw [kN]", "max displacement [mm]", "energy ratio",
-           "hourglass [% of total]", "pass-through nodes", "impactor***",
+           "hourglass [% of total]", "hourglass [% of internal]",
+           "contact energy [% of total]", "contact time [% of wall]",
+           "pass-through nodes", "impactor***",
            "fitness vs solid*****")
 
 
@@ -106,9 +110,15 @@ def study_markdown(rows: list[dict], title: str = "Efficiency and stability stud
               "step by default, or to 1 % of its area, is removed; off for the solid block, "
               "where a collapsing element ends the run).",
               "", "Energy ratio: total / initial energy at the end of the run. Hourglass: "
-              "hourglass energy at the end in % of the total (above ~10 % the curve is "
-              "questionable). Pass-through nodes: nodes the contacts reported pushed through "
-              "a surface (the contact lost them).",
+              "hourglass energy at the end in % of the total and of the internal energy "
+              "(above ~10 % of the internal energy the curve is questionable: the verdict "
+              "warns). Contact energy: the contacts' energy at the end in % of the total "
+              "(penalty springs store and friction dissipates: a negative value is energy "
+              "the contacts created; the verdict grades it). "
+              "Contact time: the contacts' search, forces and step limit in % of the run's "
+              "wall time (set-up and output included in the wall time). Pass-through "
+              "nodes: nodes the contacts reported pushed through a surface (the contact "
+              "lost them).",
               "", "\\*\\*\\* how far the impactor got: stopped (by the tissue, travel below "
               "90 % of the block height), reached the base (crushed the block onto its fixed "
               "base: the force peak is the base's), through the base (travel beyond the "
